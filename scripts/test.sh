@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# The one test command (README, CI): installs what the project needs, then runs every check.
+#   host:  fmt, clippy (-D warnings), rustdoc (-D warnings), all workspace tests and doctests
+#   cross: sky-core for thumbv7em / riscv32imac / wasm32 without std or alloc, and the firmware
+#          example under qemu (Cortex-M4F) checked against host-computed values
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+cd "$root"
+step() { printf '\n==> %s\n' "$*"; }
+start=$(date +%s)
+
+step "setup"
+scripts/setup.sh
+
+step "cargo fmt --check"
+cargo fmt --all -- --check
+
+step "cargo clippy --all-targets -D warnings"
+cargo clippy --workspace --all-targets --locked -- -D warnings
+
+step "cargo doc (warnings are errors)"
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --quiet
+
+step "cargo test (workspace: unit, integration, doc tests)"
+cargo test --workspace --locked
+
+step "cross targets and firmware under qemu"
+scripts/cross.sh
+
+printf '\nall checks passed in %d s\n' "$(( $(date +%s) - start ))"

@@ -1,0 +1,71 @@
+//! Sky models that run the same on a microcontroller, in a browser and on a workstation.
+//!
+//! `sky-core` is `#![no_std]`, never allocates, never panics on any input and contains no
+//! `unsafe` code. Every model follows one pattern: a constructor validates the parameters and
+//! precomputes everything that depends only on the sun and the atmosphere
+//! ([`PreethamSky::new`] returns `Result<_, SkyError>`); evaluation per view direction is then
+//! infallible and cheap.
+//!
+//! ```
+//! use sky_core::{geom, PreethamSky, Sun};
+//!
+//! let sun = Sun::new(60f32.to_radians(), 0.0)?; // 30° above the horizon, azimuth 0
+//! let sky = PreethamSky::new(sun, 3.0)?;        // turbidity 3: a clear day
+//! let zenith = sky.xyy(geom::direction(0.0, 0.0));
+//! assert!(zenith.luminance > 1000.0);            // cd/m²
+//! let rgb = sky.rgb(geom::direction(80f32.to_radians(), 1.0)); // linear sRGB, cd/m² scale
+//! assert!(rgb.min_element() > 0.0);
+//! # Ok::<(), sky_core::SkyError>(())
+//! ```
+//!
+//! # Conventions
+//!
+//! These hold for every model and every function in the crate.
+//!
+//! * **Angles** are in radians, `f32`.
+//! * **Axes**: a right-handed frame with **+z up** (the zenith). When the frame is tied to the
+//!   ground it is east-north-up: +x east, +y north.
+//! * **Zenith angle** θ is measured from +z: 0 at the zenith, π/2 on the horizon, π at the nadir.
+//! * **Azimuth** φ is measured in the horizontal plane from +x towards +y (counter-clockwise seen
+//!   from above), so a unit direction is `(sin θ cos φ, sin θ sin φ, cos θ)`; see
+//!   [`geom::direction`]. Only azimuth *differences* matter to the sky models.
+//! * **Directions** are [`glam::Vec3`] unit vectors pointing *from* the viewer *towards* the sky.
+//! * **Units**: luminance `Y` in cd/m²; linear sRGB triples are on the same scale (their `Y` is the
+//!   luminance). Chromaticity `x, y` is CIE 1931.
+//! * **Below the horizon** the sky models return a documented, finite value (see each model).
+//!
+//! # Models
+//!
+//! | model | type | source |
+//! |---|---|---|
+//! | Perez all-weather luminance distribution with Preetham's coefficients | [`PreethamSky`] | Perez et al. 1993; Preetham, Shirley, Smits 1999 (seed 002, eqs. 1-19) |
+//!
+//! # Features
+//!
+//! `sky-core` has no default features. Math goes through one private front: [`libm`] for what
+//! is computed once per sky, and branch-free polynomial kernels (exp, atan2, 1/√x; errors of a
+//! few ulp, stated and tested) for what is computed per direction, so that loops over
+//! directions vectorise. Results are identical, bit for bit, on every target (the firmware
+//! example checks this on a Cortex-M4F).
+//!
+//! # Batch evaluation
+//!
+//! The `*_batch` methods evaluate slices of directions with the same results as the
+//! one-direction methods; their loops compile to SIMD code for the build's target (SSE2 on
+//! x86-64). A host program can compile them once more for a wider instruction set chosen at run
+//! time, as `sky-train` does for AVX2.
+
+#![no_std]
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod color;
+mod error;
+pub mod geom;
+mod math;
+pub mod preetham;
+
+pub use error::SkyError;
+pub use geom::Sun;
+pub use glam::Vec3;
+pub use preetham::PreethamSky;

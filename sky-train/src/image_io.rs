@@ -1,0 +1,165 @@
+//! Images in and out: OpenEXR (linear float RGB) and PNG (sRGB-encoded), written atomically.
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::Path;
+
+use anyhow::{Context, Result, bail};
+use sky_core::Vec3;
+use sky_core::color;
+
+/// A linear RGB image, row-major, top row first.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RgbImage {
+    /// Width in pixels.
+    pub width: usize,
+    /// Height in pixels.
+    pub height: usize,
+    /// `width * height` linear sRGB pixels.
+    pub pixels: Vec<Vec3>,
+}
+
+impl RgbImage {
+    /// The pixel at column `x`, row `y`.
+    #[must_use]
+    pub fn get(&self, x: usize, y: usize) -> Vec3 {
+        self.pixels[y * self.width + x]
+    }
+}
+
+/// Writes a file through `write` into a temporary file beside `path`, then renames it into
+/// place: readers see the old file or the complete new one, never a partial one.
+///
+/// # Errors
+/// Any I/O error, with the path in its context; the temporary file is removed on failure.
+pub fn write_atomically(path: &Path, write: impl FnOnce(&mut File) -> Result<()>) -> Result<()> {
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".sky-train-");
+    // Temporary files are private (0600); the finished file gets the usual 0644 (less umask).
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
+    let mut tmp = builder
+        .tempfile_in(dir)
+        .with_context(|| format!("cannot create a temporary file in {}", dir.display()))?;
+    write(tmp.as_file_mut()).with_context(|| format!("cannot write {}", path.display()))?;
+    tmp.as_file()
+        .sync_all()
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    tmp.persist(path)
+        .with_context(|| format!("cannot move the finished file to {}", path.display()))?;
+    Ok(())
+}
+
+/// The image formats `--out` accepts, by extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// OpenEXR, linear float RGB.
+    Exr,
+    /// PNG, 8-bit sRGB.
+    Png,
+}
+
+impl Format {
+    /// The format named by `path`'s extension.
+    ///
+    /// # Errors
+    /// When the extension is neither `.exr` nor `.png`.
+    pub fn from_path(path: &Path) -> Result<Self> {
+        match path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase)
+            .as_deref()
+        {
+            Some("exr") => Ok(Self::Exr),
+            Some("png") => Ok(Self::Png),
+            _ => bail!(
+                "--out {}: the file name must end in .exr (linear float) or .png (sRGB)",
+                path.display()
+            ),
+        }
+    }
+}
+
+/// Writes `img` as OpenEXR with three 32-bit float channels R, G, B (linear sRGB primaries).
+///
+/// # Errors
+/// On any I/O or encoding error; nothing is left at `path` then.
+pub fn write_exr(path: &Path, img: &RgbImage) -> Result<()> {
+    use exr::prelude::*;
+    let channels = SpecificChannels::rgb(|pos: Vec2<usize>| {
+        let p = img.get(pos.x(), pos.y());
+        (p.x, p.y, p.z)
+    });
+    let image = Image::from_channels((img.width, img.height), channels);
+    write_atomically(path, |file| {
+        image
+            .write()
+            .non_parallel()
+            .to_buffered(BufWriter::new(file))
+            .context("OpenEXR encoding failed")
+    })
+}
+
+/// Writes `img` as an 8-bit sRGB PNG after multiplying by `scale` (values above 1 clip).
+///
+/// # Errors
+/// On any I/O or encoding error; nothing is left at `path` then.
+pub fn write_png(path: &Path, img: &RgbImage, scale: f32) -> Result<()> {
+    let width = u32::try_from(img.width).context("image too wide for PNG")?;
+    let height = u32::try_from(img.height).context("image too tall for PNG")?;
+    let bytes: Vec<u8> = img
+        .pixels
+        .iter()
+        .flat_map(|p| (*p * scale).to_array())
+        .map(encode_8bit)
+        .collect();
+    write_atomically(path, |file| {
+        let mut encoder = png::Encoder::new(BufWriter::new(file), width, height);
+        encoder.set_color(png::ColorType::Rgb);
+        encoder.set_depth(png::BitDepth::Eight);
+        encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+        let mut writer = encoder.write_header()?;
+        writer.write_image_data(&bytes)?;
+        writer.finish()?;
+        Ok(())
+    })
+}
+
+#[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)] // in [0, 255.5)
+fn encode_8bit(linear: f32) -> u8 {
+    (color::srgb_encode(linear) * 255.0 + 0.5) as u8
+}
+
+/// Reads an OpenEXR file's R, G, B channels (any sample type) as linear RGB.
+///
+/// # Errors
+/// When the file cannot be read, is not OpenEXR, or lacks R, G or B.
+pub fn read_exr(path: &Path) -> Result<RgbImage> {
+    use exr::prelude::*;
+    let image = read_first_rgba_layer_from_file(
+        path,
+        |resolution, _| RgbImage {
+            width: resolution.width(),
+            height: resolution.height(),
+            pixels: vec![Vec3::ZERO; resolution.width() * resolution.height()],
+        },
+        |img: &mut RgbImage, pos, (r, g, b, _a): (f32, f32, f32, f32)| {
+            img.pixels[pos.y() * img.width + pos.x()] = Vec3::new(r, g, b);
+        },
+    )
+    .with_context(|| format!("cannot read OpenEXR file {}", path.display()))?;
+    Ok(image.layer_data.channel_data.pixels)
+}
+
+/// Writes `text` to `path` atomically.
+///
+/// # Errors
+/// On any I/O error.
+pub fn write_text(path: &Path, text: &str) -> Result<()> {
+    write_atomically(path, |file| Ok(file.write_all(text.as_bytes())?))
+}

@@ -1,0 +1,42 @@
+//! `sky-train`: render, sample and benchmark the sky models from the command line.
+
+use std::io::{self, Write};
+use std::process::ExitCode;
+
+use clap::Parser;
+use sky_train::cli::{self, Cli};
+use sky_train::sources::ParamError;
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) if !e.use_stderr() => {
+            // --help and --version
+            let _ = e.print();
+            return ExitCode::SUCCESS;
+        }
+        Err(e) => {
+            // One line: clap's first paragraph (what is wrong, and with which argument), without
+            // the usage block that follows.
+            let text = e.render().to_string();
+            let first: Vec<&str> = text
+                .lines()
+                .take_while(|l| !l.trim().is_empty())
+                .map(str::trim)
+                .collect();
+            eprintln!("{}", first.join(" "));
+            return ExitCode::from(2);
+        }
+    };
+    let stdin = io::stdin();
+    let stdout = io::stdout();
+    let result = cli::execute(cli.command, &mut stdin.lock(), &mut stdout.lock());
+    let _ = io::stdout().flush();
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(if e.is::<ParamError>() { 2 } else { 1 })
+        }
+    }
+}

@@ -1,0 +1,124 @@
+//! Bad arguments: a one-line error on stderr naming the argument and its valid range, a
+//! non-zero exit status, and nothing written.
+
+use std::process::{Command, Output};
+
+fn sky_train(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_sky-train"))
+        .args(args)
+        .stdin(std::process::Stdio::null())
+        .output()
+        .expect("sky-train runs")
+}
+
+/// Asserts that `args` fail with status 2 and a single stderr line containing every `needle`.
+fn fails(args: &[&str], needles: &[&str]) {
+    let out = sky_train(args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{args:?}: `{stderr}`");
+    for needle in needles {
+        assert!(
+            stderr.contains(needle),
+            "{args:?}: `{stderr}` lacks `{needle}`"
+        );
+    }
+    assert!(out.stdout.is_empty(), "{args:?} wrote to stdout");
+}
+
+#[test]
+fn bad_sky_parameters_name_the_argument_and_range() {
+    fails(
+        &["sample", "--sun-zenith", "30", "--turbidity", "7"],
+        &["--turbidity", "7", "[2, 6]"],
+    );
+    fails(
+        &["sample", "--sun-zenith", "30", "--turbidity", "nan"],
+        &["--turbidity", "[2, 6]"],
+    );
+    fails(
+        &["sample", "--sun-zenith", "95"],
+        &["--sun-zenith", "95", "[0, 90]"],
+    );
+    fails(
+        &["sample", "--sun-zenith", "-1"],
+        &["--sun-zenith", "[0, 90]"],
+    );
+    fails(
+        &["sample", "--sun-zenith", "inf"],
+        &["--sun-zenith", "[0, 90]"],
+    );
+    fails(
+        &["sample", "--sun-zenith", "30", "--sun-azimuth", "inf"],
+        &["--sun-azimuth", "finite"],
+    );
+    fails(&["sample", "--sun-zenith", "abc"], &["--sun-zenith", "abc"]);
+    fails(&["sample"], &["--sun-zenith"]);
+    fails(
+        &["sample", "--sun-zenith", "10", "--model", "nope"],
+        &["--model", "preetham"],
+    );
+}
+
+#[test]
+fn bad_image_arguments_name_the_argument_and_range() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("x.exr");
+    let out = out.to_str().expect("UTF-8 path");
+    fails(
+        &["render", "--sun-zenith", "30", "--width", "1", "--out", out],
+        &["--width", "2..=16384"],
+    );
+    fails(
+        &[
+            "render",
+            "--sun-zenith",
+            "30",
+            "--exposure",
+            "99",
+            "--out",
+            out,
+        ],
+        &["--exposure", "[-30, 30]"],
+    );
+    fails(
+        &[
+            "render",
+            "--sun-zenith",
+            "30",
+            "--turbidity",
+            "1",
+            "--out",
+            out,
+        ],
+        &["--turbidity", "[2, 6]"],
+    );
+    assert_eq!(
+        std::fs::read_dir(dir.path()).expect("dir").count(),
+        0,
+        "nothing written"
+    );
+}
+
+#[test]
+fn bad_sample_input_names_the_line() {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_sky-train"))
+        .args(["sample", "--sun-zenith", "30"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("sky-train runs");
+    {
+        use std::io::Write;
+        let mut stdin = child.stdin.take().expect("stdin");
+        stdin
+            .write_all(b"view_zenith_deg,view_azimuth_deg\n10,20\n30;40\n")
+            .expect("write");
+    }
+    let out = child.wait_with_output().expect("wait");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("line 3"), "{stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+}
