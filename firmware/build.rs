@@ -9,6 +9,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::{env, fs};
 
+use sky_core::neural::{NeuralSky, pretrained};
 use sky_core::{PreethamSky, Sun, geom};
 
 /// Sun zenith angles of the cases, in degrees.
@@ -64,7 +65,9 @@ fn expected_table() -> Result<String, Box<dyn Error>> {
     for (index, (zenith_deg, turbidity)) in (0u16..).zip(skies) {
         let sun_azimuth_deg = f32::from(40 * index % 360);
         let (sun_zenith, sun_azimuth) = (zenith_deg.to_radians(), sun_azimuth_deg.to_radians());
-        let sky = PreethamSky::new(Sun::new(sun_zenith, sun_azimuth)?, turbidity)?;
+        let sun = Sun::new(sun_zenith, sun_azimuth)?;
+        let sky = PreethamSky::new(sun, turbidity)?;
+        let neural = NeuralSky::new(&pretrained::PREETHAM, sun, turbidity)?;
         let views = views_deg(zenith_deg, sun_azimuth_deg);
         view_count = Some(views.len());
 
@@ -78,7 +81,8 @@ fn expected_table() -> Result<String, Box<dyn Error>> {
             let dir = geom::direction(zenith, azimuth);
             let c = sky.xyy(dir);
             let rgb = sky.rgb(dir);
-            let values = [c.luminance, c.x, c.y, rgb.x, rgb.y, rgb.z];
+            let n = neural.rgb(dir);
+            let values = [c.luminance, c.x, c.y, rgb.x, rgb.y, rgb.z, n.x, n.y, n.z];
             if values.iter().any(|v| !v.is_finite()) {
                 let at = format!("view {zenith_deg}°, {azimuth_deg}°");
                 return Err(format!("non-finite value in {values:?} at {at}").into());
@@ -86,8 +90,8 @@ fn expected_table() -> Result<String, Box<dyn Error>> {
             writeln!(
                 cases,
                 "            View {{ zenith: {zenith:?}, azimuth: {azimuth:?}, \
-                 xyy: [{:?}, {:?}, {:?}], rgb: [{:?}, {:?}, {:?}] }},",
-                c.luminance, c.x, c.y, rgb.x, rgb.y, rgb.z
+                 xyy: [{:?}, {:?}, {:?}], rgb: [{:?}, {:?}, {:?}], neural: [{:?}, {:?}, {:?}] }},",
+                c.luminance, c.x, c.y, rgb.x, rgb.y, rgb.z, n.x, n.y, n.z
             )?;
         }
         writeln!(cases, "        ],")?;

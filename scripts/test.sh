@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The one test command (README, CI): installs what the project needs, then runs every check.
-#   host:  fmt, clippy (-D warnings), rustdoc (-D warnings), all workspace tests and doctests
+#   host:  fmt, clippy (-D warnings), rustdoc (-D warnings), all workspace tests and doctests,
+#          20 s of fuzzing the neural weight-file decoder
 #   cross: sky-core for thumbv7em / riscv32imac / wasm32 without std or alloc, and the firmware
 #          example under qemu (Cortex-M4F) checked against host-computed values
 set -euo pipefail
@@ -23,6 +24,9 @@ RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --quiet
 
 step "cargo test (workspace: unit, integration, doc tests)"
 cargo test --workspace --locked
+
+step "fuzz the weight-file decoder (bounded time)"
+cargo run --release --locked -q -p sky-train -- fuzz-weights --seconds 20
 
 step "cross targets and firmware under qemu"
 scripts/cross.sh

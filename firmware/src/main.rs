@@ -1,4 +1,5 @@
-//! Evaluates the Preetham sky on a Cortex-M4F and checks every value against the host.
+//! Evaluates the Preetham sky and the shipped neural sky on a Cortex-M4F and checks every value
+//! against the host.
 //!
 //! `build.rs` evaluates the same cases with the same sky-core on the host and writes the results
 //! as a const table; this program evaluates them again on the target (hard-float, libm) and
@@ -13,6 +14,7 @@ use core::panic::PanicInfo;
 
 use cortex_m_rt::{ExceptionFrame, entry, exception};
 use cortex_m_semihosting::{debug, heprintln, hprintln};
+use sky_core::neural::{NeuralSky, pretrained};
 use sky_core::{PreethamSky, SkyError, Sun, geom};
 
 /// The largest relative deviation from the host accepted for any value.
@@ -26,6 +28,8 @@ struct View {
     xyy: [f32; 3],
     /// Linear sRGB.
     rgb: [f32; 3],
+    /// Linear sRGB of the shipped neural sky (`pretrained::PREETHAM`).
+    neural: [f32; 3],
 }
 
 /// One sky: the sun (radians), the turbidity and the views checked.
@@ -86,7 +90,9 @@ impl Deviation {
 
 /// Evaluates one case on the target and compares it with the host's values.
 fn check(case: &Case) -> Result<Deviation, SkyError> {
-    let sky = PreethamSky::new(Sun::new(case.sun_zenith, case.sun_azimuth)?, case.turbidity)?;
+    let sun = Sun::new(case.sun_zenith, case.sun_azimuth)?;
+    let sky = PreethamSky::new(sun, case.turbidity)?;
+    let neural = NeuralSky::new(&pretrained::PREETHAM, sun, case.turbidity)?;
     let mut deviation = Deviation::default();
     for view in &case.views {
         let dir = geom::direction(view.zenith, view.azimuth);
@@ -95,6 +101,7 @@ fn check(case: &Case) -> Result<Deviation, SkyError> {
             deviation.compare([actual], [expected]);
         }
         deviation.compare(sky.rgb(dir).to_array(), view.rgb);
+        deviation.compare(neural.rgb(dir).to_array(), view.neural);
     }
     Ok(deviation)
 }
@@ -102,7 +109,7 @@ fn check(case: &Case) -> Result<Deviation, SkyError> {
 #[entry]
 fn main() -> ! {
     hprintln!(
-        "sky-firmware: {} Preetham skies x {} views (Y, x, y, linear sRGB) against the host, tolerance {:e}",
+        "sky-firmware: {} skies x {} views (Preetham Y, x, y, linear sRGB; neural linear sRGB) against the host, tolerance {:e}",
         CASES.len(),
         VIEWS,
         TOLERANCE

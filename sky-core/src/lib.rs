@@ -39,6 +39,7 @@
 //! | model | type | source |
 //! |---|---|---|
 //! | Perez all-weather luminance distribution with Preetham's coefficients | [`PreethamSky`] | Perez et al. 1993; Preetham, Shirley, Smits 1999 (seed 002, eqs. 1-19) |
+//! | neural sky: a 6-H-3 network (492 bytes of weights at H = 12) | [`NeuralSky`] | Satilmis et al., *A Machine Learning Driven Sky Model* (seed 000, eqs. 4-10) |
 //!
 //! # Features
 //!
@@ -63,9 +64,11 @@ pub mod color;
 mod error;
 pub mod geom;
 mod math;
+pub mod neural;
 pub mod preetham;
 
 pub use error::SkyError;
 pub use geom::Sun;
 pub use glam::Vec3;
+pub use neural::NeuralSky;
 pub use preetham::PreethamSky;

@@ -7,6 +7,7 @@ use std::time::{Duration, Instant};
 use anyhow::Result;
 use sky_core::color::{self, Xyy};
 use sky_core::geom::{Equirect, Extent};
+use sky_core::neural::{NeuralSky, pretrained};
 use sky_core::preetham::PerezCoefficients;
 use sky_core::{PreethamSky, Sun, Vec3};
 
@@ -15,6 +16,8 @@ use crate::dispatch;
 /// One measured evaluator.
 #[derive(Debug, Clone)]
 pub struct Measurement {
+    /// The group it is compared within: ratios are against the group's first measurement.
+    pub group: &'static str,
     /// What was measured.
     pub name: String,
     /// Median nanoseconds per direction.
@@ -61,18 +64,22 @@ pub fn run(dirs: &[Vec3], runs: usize) -> Result<Vec<Measurement>> {
     let peer = Straightforward::new(&sky);
     let mut results = Vec::new();
     // Times `eval` filling `out` from `dirs` and records it under `name`.
-    let mut measure = |name: String, eval: &mut dyn FnMut(&[Vec3], &mut [Vec3])| {
-        let mut out = vec![Vec3::ZERO; dirs.len()];
-        let t = median_time(runs, || {
-            eval(black_box(dirs), &mut out);
-            black_box(&out);
-        });
-        results.push(Measurement {
-            name,
-            ns_per_direction: per_direction(t, dirs.len()),
-        });
-    };
+    let mut group = "preetham";
+    let mut measure =
+        |group: &'static str, name: String, eval: &mut dyn FnMut(&[Vec3], &mut [Vec3])| {
+            let mut out = vec![Vec3::ZERO; dirs.len()];
+            let t = median_time(runs, || {
+                eval(black_box(dirs), &mut out);
+                black_box(&out);
+            });
+            results.push(Measurement {
+                group,
+                name,
+                ns_per_direction: per_direction(t, dirs.len()),
+            });
+        };
     measure(
+        group,
         "preetham, straightforward scalar peer".into(),
         &mut |d, o| {
             for (o, d) in o.iter_mut().zip(d) {
@@ -80,20 +87,73 @@ pub fn run(dirs: &[Vec3], runs: usize) -> Result<Vec<Measurement>> {
             }
         },
     );
-    measure("preetham rgb, one direction a call".into(), &mut |d, o| {
-        for (o, d) in o.iter_mut().zip(d) {
-            *o = sky.rgb(black_box(*d));
-        }
-    });
-    measure("preetham rgb_batch (baseline SIMD)".into(), &mut |d, o| {
-        sky.rgb_batch(d, o);
-    });
     measure(
+        group,
+        "preetham rgb, one direction a call".into(),
+        &mut |d, o| {
+            for (o, d) in o.iter_mut().zip(d) {
+                *o = sky.rgb(black_box(*d));
+            }
+        },
+    );
+    measure(
+        group,
+        "preetham rgb_batch (baseline SIMD)".into(),
+        &mut |d, o| {
+            sky.rgb_batch(d, o);
+        },
+    );
+    measure(
+        group,
         format!("preetham rgb_batch ({})", dispatch::describe()),
         &mut |d, o| {
             dispatch::fastest(
                 #[inline(always)]
                 || sky.rgb_batch(d, o),
+            );
+        },
+    );
+
+    group = "neural";
+    let hosek = crate::sources::Hosek::new(&crate::sources::SkyParams {
+        sun_zenith_deg: f64::from(0.9f32.to_degrees()),
+        sun_azimuth_deg: 17.0,
+        turbidity: 3.0,
+    })
+    .map_err(|e| anyhow::anyhow!("{e}"))?;
+    measure(
+        group,
+        "hosek-wilkie (hw-skymodel crate) peer".into(),
+        &mut |d, o| {
+            for (o, d) in o.iter_mut().zip(d) {
+                *o = hosek.rgb(*d);
+            }
+        },
+    );
+    let neural = NeuralSky::new(&pretrained::PREETHAM, Sun::new(0.9, 0.3)?, 3.0)?;
+    measure(
+        group,
+        "neural 6-12-3 rgb, one direction a call".into(),
+        &mut |d, o| {
+            for (o, d) in o.iter_mut().zip(d) {
+                *o = neural.rgb(black_box(*d));
+            }
+        },
+    );
+    measure(
+        group,
+        "neural 6-12-3 rgb_batch (baseline SIMD)".into(),
+        &mut |d, o| {
+            neural.rgb_batch(d, o);
+        },
+    );
+    measure(
+        group,
+        format!("neural 6-12-3 rgb_batch ({})", dispatch::describe()),
+        &mut |d, o| {
+            dispatch::fastest(
+                #[inline(always)]
+                || neural.rgb_batch(d, o),
             );
         },
     );
@@ -142,18 +202,20 @@ impl Straightforward {
     }
 }
 
-/// Formats measurements as aligned lines, each with its ratio to the first.
+/// Formats measurements as aligned lines, each with its speed ratio to its group's first.
 #[must_use]
 pub fn report(results: &[Measurement], width: u32, height: u32) -> String {
-    let base = results.first().map_or(1.0, |m| m.ns_per_direction);
     let mut s = format!("{width}x{height} directions, single thread, median of runs\n");
     for m in results {
+        let Some(base) = results.iter().find(|b| b.group == m.group) else {
+            continue;
+        };
         s += &format!(
-            "{:<40} {:>8.2} ns/direction  {:>6.2}x vs {}\n",
+            "{:<44} {:>8.2} ns/direction  {:>6.2}x vs {}\n",
             m.name,
             m.ns_per_direction,
-            base / m.ns_per_direction,
-            results.first().map_or("", |m| m.name.as_str()),
+            base.ns_per_direction / m.ns_per_direction,
+            base.name,
         );
     }
     s

@@ -6,7 +6,8 @@ use std::path::{Path, PathBuf};
 
 use crate::image_io::{self, Format};
 use crate::sources::{self, ModelKind, SkyParams};
-use crate::{bench, render};
+use crate::train::{self, TrainConfig};
+use crate::{bench, export, render};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use sky_core::Vec3;
@@ -38,8 +39,121 @@ pub enum Command {
     Sample(SkyArgs),
     /// Print ns/direction of each evaluator over a hemisphere grid, single-threaded, with ratios.
     Bench(BenchArgs),
-    /// Render a set of default skies (sun positions x turbidities) to a folder: the main job.
+    /// Render a set of default skies (sun positions x turbidities) to a folder.
     Gallery(GalleryArgs),
+    /// The main job: the gallery, then a Preetham neural sky trained from scratch and compared
+    /// with seed 000's Tables 1-2, weights and images written to the folder.
+    Showcase(ShowcaseArgs),
+    /// Train a neural sky on a model (seed 000 §III) and write its weight file.
+    Train(TrainArgs),
+    /// Evaluate a neural sky on seed 000's test protocol: Tables 1 and 2 beside the paper's,
+    /// and reference / network / difference images like Figs. 6-7.
+    Eval(EvalArgs),
+    /// Write the Rust source of a weight file for compile-time embedding in sky-core.
+    Export(ExportArgs),
+    /// Fuzz sky-core's weight-file decoder with mutated files for a bounded time.
+    FuzzWeights(FuzzArgs),
+}
+
+/// `fuzz-weights`' arguments.
+#[derive(Args)]
+pub struct FuzzArgs {
+    /// How long to fuzz, in seconds (1 to 86400).
+    #[arg(long, default_value_t = 10.0, value_parser = seconds)]
+    pub seconds: f64,
+    /// Random seed of the mutations.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+}
+
+/// `eval`'s arguments.
+#[derive(Args)]
+pub struct EvalArgs {
+    /// The network: a shipped one, or `neural` with `--weights`.
+    #[arg(long, value_enum, default_value_t = ModelKind::NeuralPreetham)]
+    pub model: ModelKind,
+    /// Weight file of `--model neural`.
+    #[arg(long, value_name = "FILE")]
+    pub weights: Option<PathBuf>,
+    /// Folder for the comparison images (created if missing).
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    pub out: PathBuf,
+}
+
+/// `export`'s arguments.
+#[derive(Args)]
+pub struct ExportArgs {
+    /// The weight file.
+    #[arg(long, value_name = "FILE")]
+    pub weights: PathBuf,
+    /// The constant's name (e.g. PREETHAM).
+    #[arg(long)]
+    pub name: String,
+    /// The Rust file to write (atomically).
+    #[arg(long, value_name = "FILE")]
+    pub out: PathBuf,
+}
+
+/// `train`'s arguments.
+#[derive(Args)]
+pub struct TrainArgs {
+    /// The sky model to learn.
+    #[arg(long, value_enum, default_value_t = ModelKind::Preetham)]
+    pub model: ModelKind,
+    /// Hidden layer sizes, comma-separated (1 to 255 each; `12` is the paper's network).
+    #[arg(long, value_delimiter = ',', default_value = "12", value_parser = clap::value_parser!(u16).range(1..=255))]
+    pub hidden: Vec<u16>,
+    /// The optimiser.
+    #[arg(long, value_enum, default_value_t = train::Optimizer::Lm)]
+    pub optimizer: train::Optimizer,
+    /// Random seed.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u32,
+    /// Wall-time budget in seconds (1 to 86400).
+    #[arg(long, default_value_t = 60.0, value_parser = seconds)]
+    pub max_seconds: f64,
+    /// Iteration budget (LM steps or backprop epochs, 1 to 1000000).
+    #[arg(long, default_value_t = 400, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    pub max_iterations: u32,
+    /// Stop once the validation NRMSE reaches this (0 = train to the budget or convergence).
+    #[arg(long, default_value_t = 0.0)]
+    pub target_nrmse: f64,
+    /// Checkpoint file: resumed from when it exists, rewritten after every iteration.
+    #[arg(long, value_name = "FILE")]
+    pub checkpoint: Option<PathBuf>,
+    /// Weight file to write (single hidden layer only). Written atomically.
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// Training turbidities, comma-separated (default: the model's range in steps of 1, as in
+    /// seed 000 §III-D).
+    #[arg(long, value_delimiter = ',', value_name = "T,T,...")]
+    pub turbidities: Option<Vec<f64>>,
+    /// Training sun zeniths, uniform over [0, 90] deg inclusive (2 to 1000).
+    #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u16).range(2..=1000))]
+    pub sun_zeniths: u16,
+    /// View strata per training sky: zenith x azimuth (each 1 to 1000).
+    #[arg(long, default_value = "10x20", value_parser = strata)]
+    pub views: (usize, usize),
+}
+
+fn strata(s: &str) -> Result<(usize, usize), String> {
+    let parse = |v: &str| {
+        v.trim()
+            .parse::<usize>()
+            .ok()
+            .filter(|n| (1..=1000).contains(n))
+    };
+    match s.split_once('x').map(|(a, b)| (parse(a), parse(b))) {
+        Some((Some(a), Some(b))) => Ok((a, b)),
+        _ => Err("expected ZxA with each in [1, 1000], e.g. 10x20".into()),
+    }
+}
+
+fn seconds(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if (1.0..=86400.0).contains(&v) => Ok(v),
+        _ => Err("expected seconds in [1, 86400]".into()),
+    }
 }
 
 /// The arguments that select one sky.
@@ -54,7 +168,7 @@ pub struct SkyArgs {
     /// Sun azimuth in degrees, measured from +x towards +y (any finite value).
     #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_negative_numbers = true, value_parser = finite)]
     sun_azimuth: f64,
-    /// Atmospheric turbidity (preetham: 2 to 6).
+    /// Atmospheric turbidity (preetham: 2 to 6; hosek: 1 to 10; neural: the trained range).
     #[arg(
         long,
         value_name = "T",
@@ -62,9 +176,32 @@ pub struct SkyArgs {
         allow_negative_numbers = true
     )]
     turbidity: f64,
+    /// Weight file of `--model neural` (written by `sky-train train`).
+    #[arg(long, value_name = "FILE")]
+    weights: Option<PathBuf>,
 }
 
 impl SkyArgs {
+    /// The sky these arguments name.
+    fn source(&self) -> Result<Box<dyn sources::SkySource>> {
+        match (&self.weights, self.model) {
+            (Some(path), ModelKind::Neural) => {
+                let weights = export::read_weights::<12>(path)
+                    .map_err(|e| sources::ParamError(format!("--weights {e:#}")))?;
+                Ok(Box::new(sources::Neural::new(
+                    &weights,
+                    ModelKind::Neural,
+                    &self.params(),
+                )?))
+            }
+            (Some(_), model) => Err(sources::ParamError(format!(
+                "--weights applies to --model neural only, not --model {model}"
+            ))
+            .into()),
+            (None, model) => Ok(sources::build(model, &self.params())?),
+        }
+    }
+
     fn params(&self) -> SkyParams {
         SkyParams {
             sun_zenith_deg: self.sun_zenith,
@@ -145,6 +282,17 @@ pub struct GalleryArgs {
     width: u32,
 }
 
+/// `showcase`'s arguments.
+#[derive(Args)]
+pub struct ShowcaseArgs {
+    /// Output folder (created if missing).
+    #[arg(long, value_name = "DIR", default_value = "out")]
+    out: PathBuf,
+    /// Training budget in wall seconds (1 to 86400).
+    #[arg(long, default_value_t = 60.0, value_parser = seconds)]
+    seconds: f64,
+}
+
 fn finite(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(v) if v.is_finite() => Ok(v),
@@ -167,7 +315,7 @@ fn exposure(s: &str) -> Result<f32, String> {
 pub fn execute(command: Command, input: &mut dyn BufRead, output: &mut dyn Write) -> Result<()> {
     match command {
         Command::Render(args) => {
-            let source = sources::build(args.sky.model, &args.sky.params())?;
+            let source = args.sky.source()?;
             let path = render_to(&*source, &args.image, &args.out)?;
             eprintln!("{}: {}", source.describe(), path.display());
             Ok(())
@@ -184,6 +332,28 @@ pub fn execute(command: Command, input: &mut dyn BufRead, output: &mut dyn Write
             Ok(())
         }
         Command::Gallery(args) => gallery(&args, output),
+        Command::Showcase(args) => showcase(&args, output),
+        Command::Train(args) => train_command(&args, output),
+        Command::Eval(args) => eval_command(&args, output),
+        Command::FuzzWeights(args) => {
+            let stats = crate::fuzz::fuzz_weights(
+                std::time::Duration::from_secs_f64(args.seconds),
+                args.seed,
+            )?;
+            writeln!(
+                output,
+                "fuzz-weights: {} inputs, {} accepted, no panic, every accepted file round-trips",
+                stats.inputs, stats.accepted
+            )?;
+            Ok(())
+        }
+        Command::Export(args) => {
+            let weights = export::read_weights::<12>(&args.weights)?;
+            let text = export::pretrained_source(&weights, &args.name, &args.weights);
+            image_io::write_text(&args.out, &text)?;
+            writeln!(output, "wrote {}", args.out.display())?;
+            Ok(())
+        }
     }
 }
 
@@ -202,7 +372,7 @@ fn render_to(source: &dyn sources::SkySource, image: &ImageArgs, out: &Path) -> 
 }
 
 fn sample(args: &SkyArgs, input: &mut dyn BufRead, output: &mut dyn Write) -> Result<()> {
-    let source = sources::build(args.model, &args.params())?;
+    let source = args.source()?;
     let mut rows: Vec<(String, String)> = Vec::new();
     let mut dirs: Vec<Vec3> = Vec::new();
     for (n, line) in input.lines().enumerate() {
@@ -313,5 +483,163 @@ fn gallery(args: &GalleryArgs, output: &mut dyn Write) -> Result<()> {
     for p in &written {
         writeln!(output, "  {}", p.display())?;
     }
+    Ok(())
+}
+
+fn train_command(args: &TrainArgs, output: &mut dyn Write) -> Result<()> {
+    let mut config = TrainConfig::new(args.model);
+    config.hidden = args.hidden.iter().map(|&h| usize::from(h)).collect();
+    config.optimizer = args.optimizer;
+    config.seed = u64::from(args.seed);
+    config.sampling.seed = u64::from(args.seed);
+    if let Some(t) = &args.turbidities {
+        let (lo, hi) = args.model.turbidity_range();
+        if let Some(bad) = t.iter().find(|t| !(lo..=hi).contains(*t)) {
+            return Err(sources::ParamError(format!(
+                "--turbidities {bad} is outside the valid range [{lo}, {hi}] for --model {}",
+                args.model
+            ))
+            .into());
+        }
+        config.sampling.turbidities.clone_from(t);
+    }
+    config.sampling.sun_zeniths = usize::from(args.sun_zeniths);
+    (config.sampling.view_zeniths, config.sampling.view_azimuths) = args.views;
+    config.max_seconds = args.max_seconds;
+    config.max_iterations = args.max_iterations as usize;
+    config.target_nrmse = args.target_nrmse;
+    config.checkpoint.clone_from(&args.checkpoint);
+    let started = std::time::Instant::now();
+    let set = train::dataset::DataSet::training(args.model, &config.sampling)?;
+    let validation = train::validation_set(args.model)?;
+    let trained = train::train(&config, &set, &validation)?;
+    let wall = started.elapsed().as_secs_f64();
+    writeln!(
+        output,
+        "trained {:?} on {} ({} examples) with {:?}: {} iterations, {:.1} s training, {:.1} s wall in all",
+        trained.net.sizes,
+        args.model,
+        trained.examples,
+        args.optimizer,
+        trained.iterations,
+        trained.seconds,
+        wall
+    )?;
+    writeln!(output, "validation NRMSE {:.5}", trained.validation_nrmse)?;
+    let test = train::dataset::paper_test_set(args.model)?;
+    writeln!(
+        output,
+        "test NRMSE (seed 000 protocol) {:.5}",
+        trained.mean_nrmse(&test)
+    )?;
+    if let Some(path) = &args.out {
+        if config.hidden == [12] {
+            let weights = export::to_weights::<12>(&trained, args.model, args.seed)?;
+            export::write_weights(path, &weights)?;
+            writeln!(output, "wrote {}", path.display())?;
+        } else {
+            bail!(
+                "--out writes 6-12-3 networks only; this run trained {:?}",
+                trained.net.sizes
+            );
+        }
+    }
+    Ok(())
+}
+
+fn eval_command(args: &EvalArgs, output: &mut dyn Write) -> Result<()> {
+    use sky_core::neural::{NeuralWeights, pretrained};
+    let weights: NeuralWeights<12> = match (args.model, &args.weights) {
+        (ModelKind::NeuralPreetham, None) => pretrained::PREETHAM,
+        (ModelKind::NeuralHosek, None) => pretrained::HOSEK,
+        (ModelKind::Neural, Some(path)) => export::read_weights::<12>(path)?,
+        (ModelKind::Neural, None) => bail!("--model neural needs --weights FILE"),
+        (model, _) => bail!(
+            "--model {model}: eval takes neural-preetham, neural-hosek or neural --weights FILE"
+        ),
+    };
+    let reference = match weights.source_name() {
+        "preetham" => ModelKind::Preetham,
+        "hosek" => ModelKind::Hosek,
+        other => bail!("the weights were trained on `{other}`, which eval has no reference for"),
+    };
+    let network = |p: &SkyParams| -> Result<Box<dyn sources::SkySource>> {
+        Ok(Box::new(sources::Neural::new(&weights, args.model, p)?))
+    };
+    let evaluation = crate::eval::evaluate(reference, &network)?;
+    write!(output, "{}", evaluation.report())?;
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("cannot create --out {}", args.out.display()))?;
+    // The skies of seed 000's Figs. 6 (Preetham, θ = 0.48π, t = 4) and 7 (Hosek, θ = 0.3π, t = 2).
+    let (figure, zenith, turbidity) = match reference {
+        ModelKind::Hosek => ("fig7", 0.3 * 180.0, 2.0),
+        _ => ("fig6", 0.48 * 180.0, 4.0),
+    };
+    let params = SkyParams {
+        sun_zenith_deg: zenith,
+        sun_azimuth_deg: 90.0,
+        turbidity,
+    };
+    let path = args.out.join(format!(
+        "{figure}_{reference}_reference_network_difference.png"
+    ));
+    crate::eval::write_comparison(&path, reference, &*network(&params)?, &params, 512)?;
+    writeln!(output, "wrote {}", path.display())?;
+    Ok(())
+}
+
+fn showcase(args: &ShowcaseArgs, output: &mut dyn Write) -> Result<()> {
+    gallery(
+        &GalleryArgs {
+            out: args.out.clone(),
+            width: 512,
+        },
+        output,
+    )?;
+    let model = ModelKind::Preetham;
+    let mut config = TrainConfig::new(model);
+    config.max_seconds = args.seconds;
+    writeln!(
+        output,
+        "\ntraining a 6-12-3 neural sky on {model} from scratch (Levenberg-Marquardt, {} s budget)...",
+        args.seconds
+    )?;
+    let set = train::dataset::DataSet::training(model, &config.sampling)?;
+    let validation = train::validation_set(model)?;
+    let trained = train::train(&config, &set, &validation)?;
+    writeln!(
+        output,
+        "{} iterations in {:.1} s; validation NRMSE {:.5}; reached the paper's {} in {}",
+        trained.iterations,
+        trained.seconds,
+        trained.validation_nrmse,
+        config.milestone,
+        trained
+            .milestone_seconds
+            .map_or_else(|| "(not reached)".to_string(), |s| format!("{s:.1} s"))
+    )?;
+    let weights = export::to_weights::<12>(&trained, model, 1)?;
+    let path = args.out.join("neural-preetham.skyn");
+    export::write_weights(&path, &weights)?;
+    writeln!(output, "wrote {}", path.display())?;
+    let network = |p: &SkyParams| -> Result<Box<dyn sources::SkySource>> {
+        Ok(Box::new(sources::Neural::new(
+            &weights,
+            ModelKind::Neural,
+            p,
+        )?))
+    };
+    let evaluation = crate::eval::evaluate(model, &network)?;
+    write!(output, "{}", evaluation.report())?;
+    let params = SkyParams {
+        sun_zenith_deg: 0.48 * 180.0,
+        sun_azimuth_deg: 90.0,
+        turbidity: 4.0,
+    };
+    let path = args
+        .out
+        .join("fig6_preetham_reference_network_difference.png");
+    crate::eval::write_comparison(&path, model, &*network(&params)?, &params, 512)?;
+    writeln!(output, "wrote {}", path.display())?;
     Ok(())
 }

@@ -5,6 +5,10 @@
 pub mod bench;
 pub mod cli;
 pub mod dispatch;
+pub mod eval;
+pub mod export;
+pub mod fuzz;
 pub mod image_io;
 pub mod render;
 pub mod sources;
+pub mod train;

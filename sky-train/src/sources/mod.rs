@@ -3,6 +3,8 @@
 //! Each source evaluates whole slices of directions at once (the fast path of every model), in
 //! sky-core's conventions: +z up, luminance in cd/m², linear sRGB on the same scale.
 
+mod hosek;
+mod neural;
 mod preetham;
 
 use std::fmt;
@@ -10,6 +12,8 @@ use std::fmt;
 use sky_core::Vec3;
 use sky_core::color::{self, Xyy};
 
+pub use hosek::Hosek;
+pub use neural::Neural;
 pub use preetham::Preetham;
 
 /// A sky model evaluated over many view directions.
@@ -36,6 +40,14 @@ pub trait SkySource: Send + Sync {
 pub enum ModelKind {
     /// The Perez/Preetham analytic sky (sky-core).
     Preetham,
+    /// The Hosek-Wilkie sky (hw-skymodel, ground albedo 0.5).
+    Hosek,
+    /// The neural sky shipped in sky-core, trained on the Preetham sky.
+    NeuralPreetham,
+    /// The neural sky shipped in sky-core, trained on the Hosek-Wilkie sky.
+    NeuralHosek,
+    /// A neural sky from a weight file (`--weights FILE`).
+    Neural,
 }
 
 impl ModelKind {
@@ -43,7 +55,18 @@ impl ModelKind {
     #[must_use]
     pub fn sun_zenith_range_deg(self) -> (f64, f64) {
         match self {
-            Self::Preetham => (0.0, 90.0),
+            Self::Preetham | Self::Hosek | Self::NeuralPreetham | Self::NeuralHosek => (0.0, 90.0),
+            Self::Neural => (0.0, 180.0),
+        }
+    }
+
+    /// The turbidities the model accepts.
+    #[must_use]
+    pub fn turbidity_range(self) -> (f64, f64) {
+        match self {
+            Self::Preetham | Self::NeuralPreetham => (2.0, 6.0),
+            Self::Hosek | Self::NeuralHosek => (1.0, 10.0),
+            Self::Neural => (0.0, f64::INFINITY),
         }
     }
 }
@@ -52,6 +75,10 @@ impl fmt::Display for ModelKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
             Self::Preetham => "preetham",
+            Self::Hosek => "hosek",
+            Self::NeuralPreetham => "neural-preetham",
+            Self::NeuralHosek => "neural-hosek",
+            Self::Neural => "neural",
         })
     }
 }
@@ -86,6 +113,21 @@ impl std::error::Error for ParamError {}
 pub fn build(kind: ModelKind, params: &SkyParams) -> Result<Box<dyn SkySource>, ParamError> {
     match kind {
         ModelKind::Preetham => Ok(Box::new(Preetham::new(params)?)),
+        ModelKind::Hosek => Ok(Box::new(Hosek::new(params)?)),
+        ModelKind::NeuralPreetham => Ok(Box::new(Neural::new(
+            &sky_core::neural::pretrained::PREETHAM,
+            kind,
+            params,
+        )?)),
+        ModelKind::NeuralHosek => Ok(Box::new(Neural::new(
+            &sky_core::neural::pretrained::HOSEK,
+            kind,
+            params,
+        )?)),
+        ModelKind::Neural => Err(ParamError(
+            "--model neural needs --weights FILE (a weight file written by `sky-train train`)"
+                .into(),
+        )),
     }
 }
 

@@ -1,0 +1,349 @@
+//! The neural sky of seed 000 (Satilmis et al., *A Machine Learning Driven Sky Model*): a
+//! 6-H-3 network that maps the sun and a view direction to linear RGB radiance.
+//!
+//! # The network (seed 000 §III-B, eqs. 4-7)
+//!
+//! Input V = {√t, θ_sun, v_x, v_y, v_z, d}: turbidity t (zeroed for models without one, such as
+//! captured skies), the sun's zenith angle, the unit view direction *rotated so that the sun's
+//! azimuth is π* (eq. 10), and d = |v − s|, the Euclidean distance between the unit view and sun
+//! directions (= 2 sin(γ/2)). Each input is normalised, u_k = (V_k − offset_k) · scale_k (the
+//! affine map is stored with the weights and folded into the first layer when the sky is
+//! built, so it costs nothing per direction). One hidden layer of H neurons with bias and the
+//! activation f(x) = 1/(1 + x²) (eq. 5); three outputs y_c = f(z_c) in (0, 1], mapped to radiance
+//! by L_s(y) = ½(1/y − 1) (eq. 7) and a per-channel scale.
+//!
+//! **Keeping y away from 0.** Since y = 1/(1 + z²), L_s(y) = ½(1/y − 1) = ½ z² exactly: the
+//! evaluation computes ½ z² and never forms y, so there is no division by a y that could round to
+//! 0, and the radiance is finite and non-negative for every input (finite weights are validated
+//! at decoding; the result is clamped to `f32::MAX`).
+//!
+//! # Size
+//!
+//! H = 12 (the paper's choice) has 6·12 + 12 + 12·3 + 3 = 123 weights: **492 bytes** of f32, as
+//! the paper states (§IV-C). The input/output normalisation adds 15 floats (60 bytes); the
+//! binary file format ([`weights`]) adds a 128-byte header and a 4-byte checksum.
+//!
+//! # Shipped skies
+//!
+//! [`pretrained::PREETHAM`] and [`pretrained::HOSEK`] were trained by `sky-train` on the Preetham
+//! sky (turbidity 2-6) and the Hosek-Wilkie sky (turbidity 1-10, ground albedo 0.5); their
+//! accuracy on the paper's test protocol is in each constant's docs.
+
+pub mod pretrained;
+pub mod weights;
+
+use glam::Vec3;
+
+use crate::error::{SkyError, check_range};
+use crate::geom::Sun;
+use crate::math;
+
+pub use weights::{NeuralWeights, WeightsError};
+
+/// Number of network inputs: √t, θ_sun, v_x, v_y, v_z, d.
+pub const INPUTS: usize = 6;
+/// Number of network outputs: linear R, G, B.
+pub const OUTPUTS: usize = 3;
+
+/// The neural sky for one sun position and turbidity, with `H` hidden neurons (12 by default).
+///
+/// ```
+/// use sky_core::neural::{pretrained, NeuralSky};
+/// use sky_core::{geom, Sun};
+///
+/// let sun = Sun::new(50f32.to_radians(), 1.0)?;
+/// let sky = NeuralSky::new(&pretrained::PREETHAM, sun, 3.0)?;
+/// let rgb = sky.rgb(geom::direction(0.2, 0.0)); // linear sRGB, cd/m² scale
+/// assert!(rgb.min_element() > 0.0);
+/// # Ok::<(), sky_core::SkyError>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NeuralSky<const H: usize = 12> {
+    /// The sun direction (for d).
+    sun: Vec3,
+    /// Per hidden neuron: the part of the pre-activation that depends only on the sky, and the
+    /// coefficients of v_x, v_y, v_z (rotation of eq. 10 and input scaling folded in) and d.
+    constant: [f32; H],
+    coeff_x: [f32; H],
+    coeff_y: [f32; H],
+    coeff_z: [f32; H],
+    coeff_d: [f32; H],
+    /// Output layer weights and biases.
+    output: [[f32; H]; OUTPUTS],
+    output_bias: [f32; OUTPUTS],
+    /// ½ · output scale per channel: radiance = half_scale · z².
+    half_scale: [f32; OUTPUTS],
+}
+
+impl<const H: usize> NeuralSky<H> {
+    /// The sky of `weights` for `sun` and `turbidity`.
+    ///
+    /// The sun's zenith angle and the turbidity must lie inside the ranges the weights were
+    /// trained for ([`NeuralWeights::sun_zenith_range`], [`NeuralWeights::turbidity_range`]).
+    /// Weights trained without a turbidity input (captured skies) ignore `turbidity`.
+    ///
+    /// # Errors
+    /// [`SkyError::OutOfRange`] for a sun zenith or turbidity outside the trained ranges (or
+    /// NaN).
+    pub fn new(weights: &NeuralWeights<H>, sun: Sun, turbidity: f32) -> Result<Self, SkyError> {
+        let (zmin, zmax) = weights.sun_zenith_range;
+        let theta_s = check_range("sun zenith [rad]", sun.zenith(), zmin, zmax)?;
+        let sqrt_t = if weights.uses_turbidity {
+            let (tmin, tmax) = weights.turbidity_range;
+            math::sqrt(check_range("turbidity", turbidity, tmin, tmax)?)
+        } else {
+            0.0
+        };
+        // Eq. 10: the view is rotated by −(φ_sun − π) about z, so that the sun's azimuth is π.
+        let rotate = sun.azimuth() - core::f32::consts::PI;
+        let (sin_r, cos_r) = (math::sin(rotate), math::cos(rotate));
+        let off = &weights.input_offset;
+        let sc = &weights.input_scale;
+        let mut sky = Self {
+            sun: sun.direction(),
+            constant: [0.0; H],
+            coeff_x: [0.0; H],
+            coeff_y: [0.0; H],
+            coeff_z: [0.0; H],
+            coeff_d: [0.0; H],
+            output: weights.output,
+            output_bias: weights.output_bias,
+            half_scale: weights.output_scale.map(|s| 0.5 * s),
+        };
+        for j in 0..H {
+            let w = &weights.hidden[j];
+            // Scaled weights: u_k = (V_k − off_k) sc_k, so w_k u_k = (w_k sc_k) V_k − w_k sc_k off_k.
+            let ws: [f32; INPUTS] = core::array::from_fn(|k| w[k] * sc[k]);
+            let shift: f32 = (0..INPUTS).map(|k| ws[k] * off[k]).sum();
+            sky.constant[j] = weights.hidden_bias[j] + ws[0] * sqrt_t + ws[1] * theta_s - shift;
+            // v_x = v_x0 cos r + v_y0 sin r, v_y = v_y0 cos r − v_x0 sin r (eq. 10).
+            sky.coeff_x[j] = ws[2] * cos_r - ws[3] * sin_r;
+            sky.coeff_y[j] = ws[2] * sin_r + ws[3] * cos_r;
+            sky.coeff_z[j] = ws[4];
+            sky.coeff_d[j] = ws[5];
+        }
+        Ok(sky)
+    }
+
+    /// Linear sRGB radiance towards `dir` (need not be normalised if its length lies in
+    /// [1e-18, 1e18]), in the units of the training data (cd/m² for the shipped Preetham sky).
+    /// Finite and non-negative for every input. The accuracy is that of the weights (see
+    /// [`pretrained`]).
+    #[inline]
+    #[must_use]
+    pub fn rgb(&self, dir: Vec3) -> Vec3 {
+        let [r, g, b] = self.rgb_lanes([dir.x], [dir.y], [dir.z]);
+        Vec3::new(r[0], g[0], b[0])
+    }
+
+    /// [`rgb`](Self::rgb) for many directions: fills `out[i]` for every `i` below
+    /// `min(dirs.len(), out.len())`, with the same results as `rgb` bit for bit. Directions are
+    /// evaluated eight at a time in SIMD-friendly lanes.
+    #[inline(always)]
+    pub fn rgb_batch(&self, dirs: &[Vec3], out: &mut [Vec3]) {
+        const LANES: usize = 8;
+        let n = dirs.len().min(out.len());
+        let (dirs, out) = (&dirs[..n], &mut out[..n]);
+        let mut chunks = dirs.chunks_exact(LANES);
+        let mut outs = out.chunks_exact_mut(LANES);
+        for (d, o) in (&mut chunks).zip(&mut outs) {
+            let x: [f32; LANES] = core::array::from_fn(|i| d[i].x);
+            let y: [f32; LANES] = core::array::from_fn(|i| d[i].y);
+            let z: [f32; LANES] = core::array::from_fn(|i| d[i].z);
+            let [r, g, b] = self.rgb_lanes(x, y, z);
+            for (i, slot) in o.iter_mut().enumerate() {
+                *slot = Vec3::new(r[i], g[i], b[i]);
+            }
+        }
+        for (d, o) in chunks.remainder().iter().zip(outs.into_remainder()) {
+            *o = self.rgb(*d);
+        }
+    }
+
+    /// Eqs. 4-7 for `L` directions given as coordinate lanes, without a branch. Every lane
+    /// performs the same operations in the same order whatever `L` is, so one direction and a
+    /// batch give identical results.
+    #[inline(always)]
+    fn rgb_lanes<const L: usize>(&self, x: [f32; L], y: [f32; L], z: [f32; L]) -> [[f32; L]; 3] {
+        let mut vx = [0.0; L];
+        let mut vy = [0.0; L];
+        let mut vz = [0.0; L];
+        let mut d = [0.0; L];
+        for i in 0..L {
+            let inv = math::rsqrt(x[i] * x[i] + y[i] * y[i] + z[i] * z[i]);
+            (vx[i], vy[i], vz[i]) = (x[i] * inv, y[i] * inv, z[i] * inv);
+            let (dx, dy, dz) = (vx[i] - self.sun.x, vy[i] - self.sun.y, vz[i] - self.sun.z);
+            let q = dx * dx + dy * dy + dz * dz;
+            d[i] = q * math::rsqrt(q);
+        }
+        let mut out = [[0.0; L]; OUTPUTS];
+        for (o, bias) in out.iter_mut().zip(self.output_bias) {
+            *o = [bias; L];
+        }
+        for j in 0..H {
+            let mut a = [0.0; L];
+            for i in 0..L {
+                let h = self.constant[j]
+                    + self.coeff_x[j] * vx[i]
+                    + self.coeff_y[j] * vy[i]
+                    + self.coeff_z[j] * vz[i]
+                    + self.coeff_d[j] * d[i];
+                // Eq. 5: f(h) = 1/(1 + h²).
+                a[i] = 1.0 / (1.0 + h * h);
+            }
+            for (o, w) in out.iter_mut().zip(&self.output) {
+                for i in 0..L {
+                    o[i] += w[j] * a[i];
+                }
+            }
+        }
+        // Eq. 7 through eq. 6's output activation: L_s(f(z)) = ½ z² (see the module docs).
+        for (o, s) in out.iter_mut().zip(self.half_scale) {
+            for v in o.iter_mut() {
+                *v = (s * *v * *v).min(f32::MAX);
+            }
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom;
+
+    /// The paper's equations 4-7 and 10 written out in f64, straight from the text: rotate the
+    /// view (eq. 10), build V, normalise, one hidden layer with f(x) = 1/(1+x²), output
+    /// y = f(z), radiance = scale · ½(1/y − 1).
+    fn reference(w: &NeuralWeights<12>, sun: (f64, f64), t: f64, view: (f64, f64)) -> [f64; 3] {
+        let (ts, ps) = sun;
+        let (tv, pv) = view;
+        let v0 = [tv.sin() * pv.cos(), tv.sin() * pv.sin(), tv.cos()];
+        let r = ps - core::f64::consts::PI;
+        let v = [
+            v0[0] * r.cos() + v0[1] * r.sin(),
+            v0[1] * r.cos() - v0[0] * r.sin(),
+            v0[2],
+        ];
+        let s = [-ts.sin(), 0.0, ts.cos()]; // the sun at azimuth π
+        let d = ((v[0] - s[0]).powi(2) + (v[1] - s[1]).powi(2) + (v[2] - s[2]).powi(2)).sqrt();
+        let input = [libm::sqrt(t), ts, v[0], v[1], v[2], d];
+        let u: [f64; 6] = core::array::from_fn(|k| {
+            (input[k] - f64::from(w.input_offset[k])) * f64::from(w.input_scale[k])
+        });
+        let f = |x: f64| 1.0 / (1.0 + x * x);
+        let a: [f64; 12] = core::array::from_fn(|j| {
+            f(f64::from(w.hidden_bias[j])
+                + (0..6)
+                    .map(|k| f64::from(w.hidden[j][k]) * u[k])
+                    .sum::<f64>())
+        });
+        core::array::from_fn(|c| {
+            let z = f64::from(w.output_bias[c])
+                + (0..12)
+                    .map(|j| f64::from(w.output[c][j]) * a[j])
+                    .sum::<f64>();
+            let y = f(z);
+            f64::from(w.output_scale[c]) * 0.5 * (1.0 / y - 1.0)
+        })
+    }
+
+    fn weights() -> NeuralWeights<12> {
+        let v = |i: usize| ((i * 7919 % 1000) as f32 - 500.0) / 400.0;
+        NeuralWeights {
+            hidden: core::array::from_fn(|j| core::array::from_fn(|k| v(j * 6 + k))),
+            hidden_bias: core::array::from_fn(|j| v(100 + j)),
+            output: core::array::from_fn(|c| core::array::from_fn(|j| v(200 + c * 12 + j))),
+            output_bias: [0.4, -0.2, 0.3],
+            input_offset: [1.9, 0.8, 0.0, 0.0, 0.5, 1.2],
+            input_scale: [2.0, 1.5, 1.4, 1.4, 3.0, 1.1],
+            output_scale: [1.0, 2.0, 3.0],
+            uses_turbidity: true,
+            turbidity_range: (2.0, 6.0),
+            sun_zenith_range: (0.0, core::f32::consts::FRAC_PI_2),
+            source: [0; 32],
+            seed: 0,
+            nrmse: 0.0,
+        }
+    }
+
+    #[test]
+    fn matches_the_papers_equations_in_f64() {
+        let w = weights();
+        let mut worst = 0.0f64;
+        for (ts, ps, t) in [
+            (0.0, 0.0, 2.0),
+            (0.7, 2.0, 3.3),
+            (1.5, -1.0, 6.0),
+            (1.2, 3.0, 4.0),
+        ] {
+            let sky = NeuralSky::new(&w, Sun::new(ts, ps).expect("valid"), t).expect("valid");
+            for i in 0..=9 {
+                for k in 0..24 {
+                    let (tv, pv) = (f64::from(i) * 0.17, f64::from(k) * 0.26);
+                    #[allow(clippy::cast_possible_truncation)]
+                    let got = sky.rgb(geom::direction(tv as f32, pv as f32));
+                    let want =
+                        reference(&w, (f64::from(ts), f64::from(ps)), f64::from(t), (tv, pv));
+                    for c in 0..3 {
+                        let e = (f64::from(got[c]) - want[c]).abs() / want[c].abs().max(1e-3);
+                        worst = worst.max(e);
+                    }
+                }
+            }
+        }
+        assert!(worst < 2e-4, "max relative error {worst}");
+    }
+
+    #[test]
+    fn batch_equals_single_and_outputs_are_finite() {
+        let w = weights();
+        let sky = NeuralSky::new(&w, Sun::new(0.4, 1.0).expect("valid"), 2.5).expect("valid");
+        let dirs = [
+            Vec3::new(0.0, 0.0, 1.0),
+            Vec3::new(1.0, 2.0, -3.0),
+            Vec3::ZERO,
+            Vec3::splat(f32::NAN),
+            Vec3::new(f32::INFINITY, 0.0, 1.0),
+            Vec3::new(1e-30, 0.0, 0.0),
+        ];
+        let mut out = [Vec3::ONE; 6];
+        sky.rgb_batch(&dirs, &mut out);
+        for (d, o) in dirs.iter().zip(out) {
+            assert_eq!(
+                o.to_array().map(f32::to_bits),
+                sky.rgb(*d).to_array().map(f32::to_bits)
+            );
+            assert!(o.is_finite() && o.min_element() >= 0.0, "{d} -> {o}");
+        }
+    }
+
+    #[test]
+    fn validates_the_trained_domain() {
+        let w = weights();
+        let sun = Sun::new(0.4, 0.0).expect("valid");
+        assert!(matches!(
+            NeuralSky::new(&w, sun, 7.0),
+            Err(SkyError::OutOfRange {
+                parameter: "turbidity",
+                ..
+            })
+        ));
+        assert!(NeuralSky::new(&w, sun, f32::NAN).is_err());
+        assert!(matches!(
+            NeuralSky::new(&w, Sun::new(1.7, 0.0).expect("valid"), 3.0),
+            Err(SkyError::OutOfRange {
+                parameter: "sun zenith [rad]",
+                ..
+            })
+        ));
+        let captured = NeuralWeights {
+            uses_turbidity: false,
+            ..w
+        };
+        assert!(
+            NeuralSky::new(&captured, sun, f32::NAN).is_ok(),
+            "turbidity unused"
+        );
+    }
+}

@@ -1,0 +1,16 @@
+//! Neural skies trained by `sky-train` and shipped as Rust constants.
+//!
+//! The constants are generated from the weight files in `sky-core/weights/` by
+//! `sky-train export`; a test regenerates them and fails on any difference. Their accuracy on
+//! seed 000's test protocol (held by tests in `tests/tests/neural.rs`):
+//!
+//! | constant | trained on | mean NRMSE | mean irradiance difference |
+//! |---|---|---|---|
+//! | [`PREETHAM`] | Preetham, turbidity 2-6 | ACC_P |
+//! | [`HOSEK`] | Hosek-Wilkie, turbidity 1-10, albedo 0.5 | ACC_H |
+
+mod hosek;
+mod preetham;
+
+pub use hosek::HOSEK;
+pub use preetham::PREETHAM;

@@ -1,0 +1,551 @@
+//! Neural-sky weights and their binary file format, decoded and encoded without allocation.
+//!
+//! # File format, version 1 (all numbers little-endian)
+//!
+//! | offset | bytes | field |
+//! |---:|---:|---|
+//! | 0 | 4 | magic `SKYN` |
+//! | 4 | 2 | format version, `1` |
+//! | 6 | 1 | inputs, `6` |
+//! | 7 | 1 | hidden neurons H (1-255) |
+//! | 8 | 1 | outputs, `3` |
+//! | 9 | 1 | flags: bit 0 = the turbidity input is used; other bits 0 |
+//! | 10 | 2 | reserved, 0 |
+//! | 12 | 24 | input offsets, 6 × f32 |
+//! | 36 | 24 | input scales, 6 × f32 |
+//! | 60 | 12 | output scales, 3 × f32 (> 0) |
+//! | 72 | 8 | trained turbidity range, 2 × f32 (min ≤ max) |
+//! | 80 | 8 | trained sun-zenith range in radians, 2 × f32 (0 ≤ min ≤ max ≤ π) |
+//! | 88 | 32 | source model, ASCII, NUL-padded (e.g. `preetham`) |
+//! | 120 | 4 | training seed, u32 |
+//! | 124 | 4 | held-out NRMSE reached in training, f32 |
+//! | 128 | 4 · (6H + H + 3H + 3) | hidden weights H × 6 (row per neuron, inputs in V's order), hidden biases H, output weights 3 × H (row per channel), output biases 3 |
+//! | end − 4 | 4 | CRC-32 (IEEE 802.3, as zlib) of every byte before it |
+//!
+//! Every float must be finite. A file for H = 12 is 128 + 492 + 4 = 624 bytes.
+
+use core::fmt;
+
+use super::{INPUTS, OUTPUTS};
+
+/// The file's magic number.
+pub const MAGIC: [u8; 4] = *b"SKYN";
+/// The format version this crate reads and writes.
+pub const VERSION: u16 = 1;
+/// Header bytes before the weights.
+pub const HEADER_LEN: usize = 128;
+
+/// The size in bytes of a weight file for `hidden` neurons.
+#[must_use]
+pub const fn encoded_len(hidden: usize) -> usize {
+    HEADER_LEN + 4 * (INPUTS * hidden + hidden + OUTPUTS * hidden + OUTPUTS) + 4
+}
+
+/// Why a weight file could not be decoded (or encoded).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum WeightsError {
+    /// The data ends before the file does.
+    Truncated {
+        /// Bytes the file needs.
+        needed: usize,
+        /// Bytes given.
+        got: usize,
+    },
+    /// More bytes than the file's shape accounts for.
+    TrailingBytes {
+        /// Bytes the file needs.
+        needed: usize,
+        /// Bytes given.
+        got: usize,
+    },
+    /// The first four bytes are not `SKYN`.
+    BadMagic([u8; 4]),
+    /// A format version this crate does not read.
+    UnsupportedVersion(u16),
+    /// The layer sizes differ from the network type's.
+    WrongShape {
+        /// Inputs, hidden neurons and outputs in the file.
+        found: [u8; 3],
+        /// Inputs, hidden neurons and outputs expected.
+        expected: [usize; 3],
+    },
+    /// The stored CRC-32 does not match the data.
+    ChecksumMismatch {
+        /// The checksum in the file.
+        stored: u32,
+        /// The checksum of the data.
+        computed: u32,
+    },
+    /// A float field is NaN or infinite.
+    NonFinite {
+        /// Which field.
+        field: &'static str,
+    },
+    /// A header field holds an invalid value (unknown flag bits, a reversed range, a
+    /// non-positive output scale, a non-ASCII model name).
+    InvalidHeader {
+        /// Which field.
+        field: &'static str,
+    },
+    /// The output buffer given to [`NeuralWeights::encode`] is too small.
+    BufferTooSmall {
+        /// Bytes needed.
+        needed: usize,
+    },
+}
+
+impl fmt::Display for WeightsError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Self::Truncated { needed, got } => {
+                write!(f, "weight file truncated: {got} bytes, needs {needed}")
+            }
+            Self::TrailingBytes { needed, got } => write!(
+                f,
+                "weight file has {got} bytes, {} more than its {needed}-byte shape",
+                got - needed
+            ),
+            Self::BadMagic(m) => write!(f, "not a weight file: magic {m:?}, expected \"SKYN\""),
+            Self::UnsupportedVersion(v) => {
+                write!(
+                    f,
+                    "weight file version {v} is not supported (only {VERSION})"
+                )
+            }
+            Self::WrongShape { found, expected } => write!(
+                f,
+                "weight file is a {}-{}-{} network, expected {}-{}-{}",
+                found[0], found[1], found[2], expected[0], expected[1], expected[2]
+            ),
+            Self::ChecksumMismatch { stored, computed } => write!(
+                f,
+                "weight file checksum mismatch: stored {stored:#010x}, data gives {computed:#010x}"
+            ),
+            Self::NonFinite { field } => write!(f, "weight file field {field} is not finite"),
+            Self::InvalidHeader { field } => {
+                write!(f, "weight file header field {field} is invalid")
+            }
+            Self::BufferTooSmall { needed } => {
+                write!(f, "output buffer too small: {needed} bytes needed")
+            }
+        }
+    }
+}
+
+impl core::error::Error for WeightsError {}
+
+/// The weights of a 6-H-3 neural sky, its input/output normalisation and its training domain.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NeuralWeights<const H: usize = 12> {
+    /// Hidden-layer weights: row j holds neuron j's weights for the normalised inputs
+    /// u = (√t, θ_sun, v_x, v_y, v_z, d).
+    pub hidden: [[f32; INPUTS]; H],
+    /// Hidden-layer biases.
+    pub hidden_bias: [f32; H],
+    /// Output-layer weights: row c holds channel c's weights (R, G, B).
+    pub output: [[f32; H]; OUTPUTS],
+    /// Output-layer biases.
+    pub output_bias: [f32; OUTPUTS],
+    /// u_k = (V_k − input_offset_k) · input_scale_k.
+    pub input_offset: [f32; INPUTS],
+    /// See [`input_offset`](Self::input_offset).
+    pub input_scale: [f32; INPUTS],
+    /// Radiance of channel c = output_scale_c · L_s(y_c) (eq. 7).
+    pub output_scale: [f32; OUTPUTS],
+    /// Whether the network reads turbidity (false: input 0 is zeroed, as for captured skies).
+    pub uses_turbidity: bool,
+    /// The turbidities the network was trained on, inclusive.
+    pub turbidity_range: (f32, f32),
+    /// The sun zenith angles (radians) the network was trained on, inclusive.
+    pub sun_zenith_range: (f32, f32),
+    /// The source model's name, ASCII, NUL-padded.
+    pub source: [u8; 32],
+    /// The training run's random seed.
+    pub seed: u32,
+    /// The held-out NRMSE the training reached.
+    pub nrmse: f32,
+}
+
+/// Reads little-endian values from a byte slice whose length was checked beforehand.
+struct Reader<'a> {
+    bytes: &'a [u8],
+    pos: usize,
+}
+
+impl Reader<'_> {
+    fn take<const N: usize>(&mut self) -> [u8; N] {
+        let mut out = [0u8; N];
+        if let Some(src) = self.bytes.get(self.pos..self.pos + N) {
+            out.copy_from_slice(src);
+        }
+        self.pos += N;
+        out
+    }
+
+    fn f32(&mut self, field: &'static str) -> Result<f32, WeightsError> {
+        let v = f32::from_le_bytes(self.take());
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(WeightsError::NonFinite { field })
+        }
+    }
+
+    fn f32s<const N: usize>(&mut self, field: &'static str) -> Result<[f32; N], WeightsError> {
+        let mut out = [0.0; N];
+        for v in &mut out {
+            *v = self.f32(field)?;
+        }
+        Ok(out)
+    }
+}
+
+/// Writes little-endian values into a byte slice whose length was checked beforehand.
+struct Writer<'a> {
+    bytes: &'a mut [u8],
+    pos: usize,
+}
+
+impl Writer<'_> {
+    fn put(&mut self, src: &[u8]) {
+        if let Some(dst) = self.bytes.get_mut(self.pos..self.pos + src.len()) {
+            dst.copy_from_slice(src);
+        }
+        self.pos += src.len();
+    }
+
+    fn f32s(&mut self, values: &[f32]) {
+        for v in values {
+            self.put(&v.to_le_bytes());
+        }
+    }
+}
+
+impl<const H: usize> NeuralWeights<H> {
+    /// The size of this network's weight file in bytes.
+    pub const ENCODED_LEN: usize = encoded_len(H);
+
+    /// The source model's name (up to the first NUL).
+    #[must_use]
+    pub fn source_name(&self) -> &str {
+        let end = self
+            .source
+            .iter()
+            .position(|&b| b == 0)
+            .unwrap_or(self.source.len());
+        core::str::from_utf8(&self.source[..end]).unwrap_or("")
+    }
+
+    /// Decodes a weight file (see the module docs for the format).
+    ///
+    /// # Errors
+    /// A [`WeightsError`] for every malformed input: truncated or overlong data, bad magic,
+    /// unknown version, layer sizes other than 6-H-3, a checksum mismatch, non-finite floats
+    /// and invalid header values.
+    pub fn decode(bytes: &[u8]) -> Result<Self, WeightsError> {
+        let needed = Self::ENCODED_LEN;
+        if bytes.len() < HEADER_LEN.min(needed) || bytes.len() < 12 {
+            return Err(WeightsError::Truncated {
+                needed,
+                got: bytes.len(),
+            });
+        }
+        let mut r = Reader { bytes, pos: 0 };
+        let magic: [u8; 4] = r.take();
+        if magic != MAGIC {
+            return Err(WeightsError::BadMagic(magic));
+        }
+        let version = u16::from_le_bytes(r.take());
+        if version != VERSION {
+            return Err(WeightsError::UnsupportedVersion(version));
+        }
+        let shape: [u8; 3] = r.take();
+        if [
+            usize::from(shape[0]),
+            usize::from(shape[1]),
+            usize::from(shape[2]),
+        ] != [INPUTS, H, OUTPUTS]
+        {
+            return Err(WeightsError::WrongShape {
+                found: shape,
+                expected: [INPUTS, H, OUTPUTS],
+            });
+        }
+        if bytes.len() < needed {
+            return Err(WeightsError::Truncated {
+                needed,
+                got: bytes.len(),
+            });
+        }
+        if bytes.len() > needed {
+            return Err(WeightsError::TrailingBytes {
+                needed,
+                got: bytes.len(),
+            });
+        }
+        let (body, crc) = bytes.split_at(needed - 4);
+        let stored = u32::from_le_bytes([crc[0], crc[1], crc[2], crc[3]]);
+        let computed = crc32fast::hash(body);
+        if stored != computed {
+            return Err(WeightsError::ChecksumMismatch { stored, computed });
+        }
+        let [flags]: [u8; 1] = r.take();
+        if flags & !1 != 0 {
+            return Err(WeightsError::InvalidHeader { field: "flags" });
+        }
+        let _reserved: [u8; 2] = r.take();
+        let input_offset = r.f32s("input offsets")?;
+        let input_scale = r.f32s("input scales")?;
+        let output_scale: [f32; OUTPUTS] = r.f32s("output scales")?;
+        if output_scale.iter().any(|&s| s <= 0.0) {
+            return Err(WeightsError::InvalidHeader {
+                field: "output scales",
+            });
+        }
+        let [tmin, tmax] = r.f32s("turbidity range")?;
+        if tmin > tmax {
+            return Err(WeightsError::InvalidHeader {
+                field: "turbidity range",
+            });
+        }
+        let [zmin, zmax] = r.f32s("sun zenith range")?;
+        if !(0.0 <= zmin && zmin <= zmax && zmax <= core::f32::consts::PI) {
+            return Err(WeightsError::InvalidHeader {
+                field: "sun zenith range",
+            });
+        }
+        let source: [u8; 32] = r.take();
+        if !source.is_ascii() {
+            return Err(WeightsError::InvalidHeader {
+                field: "source model",
+            });
+        }
+        let seed = u32::from_le_bytes(r.take());
+        let nrmse = r.f32("training NRMSE")?;
+        let mut hidden = [[0.0; INPUTS]; H];
+        for row in &mut hidden {
+            *row = r.f32s("hidden weights")?;
+        }
+        let hidden_bias = r.f32s("hidden biases")?;
+        let mut output = [[0.0; H]; OUTPUTS];
+        for row in &mut output {
+            *row = r.f32s("output weights")?;
+        }
+        let output_bias = r.f32s("output biases")?;
+        Ok(Self {
+            hidden,
+            hidden_bias,
+            output,
+            output_bias,
+            input_offset,
+            input_scale,
+            output_scale,
+            uses_turbidity: flags & 1 == 1,
+            turbidity_range: (tmin, tmax),
+            sun_zenith_range: (zmin, zmax),
+            source,
+            seed,
+            nrmse,
+        })
+    }
+
+    /// Encodes the weights into `buf` (at least [`Self::ENCODED_LEN`] bytes) and returns the
+    /// number of bytes written.
+    ///
+    /// # Errors
+    /// [`WeightsError::BufferTooSmall`] when `buf` is too short; [`WeightsError::WrongShape`]
+    /// when H exceeds 255.
+    pub fn encode(&self, buf: &mut [u8]) -> Result<usize, WeightsError> {
+        let needed = Self::ENCODED_LEN;
+        let Ok(hidden) = u8::try_from(H) else {
+            return Err(WeightsError::WrongShape {
+                found: [6, 255, 3],
+                expected: [INPUTS, H, OUTPUTS],
+            });
+        };
+        let Some(buf) = buf.get_mut(..needed) else {
+            return Err(WeightsError::BufferTooSmall { needed });
+        };
+        let mut w = Writer { bytes: buf, pos: 0 };
+        w.put(&MAGIC);
+        w.put(&VERSION.to_le_bytes());
+        w.put(&[6, hidden, 3, u8::from(self.uses_turbidity), 0, 0]);
+        w.f32s(&self.input_offset);
+        w.f32s(&self.input_scale);
+        w.f32s(&self.output_scale);
+        w.f32s(&[self.turbidity_range.0, self.turbidity_range.1]);
+        w.f32s(&[self.sun_zenith_range.0, self.sun_zenith_range.1]);
+        w.put(&self.source);
+        w.put(&self.seed.to_le_bytes());
+        w.f32s(&[self.nrmse]);
+        for row in &self.hidden {
+            w.f32s(row);
+        }
+        w.f32s(&self.hidden_bias);
+        for row in &self.output {
+            w.f32s(row);
+        }
+        w.f32s(&self.output_bias);
+        let crc = crc32fast::hash(&w.bytes[..needed - 4]);
+        w.put(&crc.to_le_bytes());
+        Ok(needed)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Deterministic, varied weights (no training needed to test the format).
+    fn sample() -> NeuralWeights<12> {
+        let v = |i: usize| ((i * 7919 % 1000) as f32 - 500.0) / 250.0;
+        NeuralWeights {
+            hidden: core::array::from_fn(|j| core::array::from_fn(|k| v(j * 6 + k))),
+            hidden_bias: core::array::from_fn(|j| v(100 + j)),
+            output: core::array::from_fn(|c| core::array::from_fn(|j| v(200 + c * 12 + j))),
+            output_bias: [0.1, -0.2, 0.3],
+            input_offset: [1.9, 0.8, 0.0, 0.0, 0.5, 1.2],
+            input_scale: [2.0, 1.5, 1.4, 1.4, 3.0, 1.1],
+            output_scale: [9000.0, 9500.0, 12000.0],
+            uses_turbidity: true,
+            turbidity_range: (2.0, 6.0),
+            sun_zenith_range: (0.0, core::f32::consts::FRAC_PI_2),
+            source: *b"preetham\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0",
+            seed: 42,
+            nrmse: 0.0061,
+        }
+    }
+
+    fn encoded() -> [u8; encoded_len(12)] {
+        let mut buf = [0u8; encoded_len(12)];
+        assert_eq!(sample().encode(&mut buf), Ok(624));
+        buf
+    }
+
+    /// Rewrites the checksum after a deliberate change, so the decoder reaches the field check.
+    fn reseal(buf: &mut [u8]) {
+        let n = buf.len();
+        let crc = crc32fast::hash(&buf[..n - 4]);
+        buf[n - 4..].copy_from_slice(&crc.to_le_bytes());
+    }
+
+    #[test]
+    fn round_trip_and_size() {
+        assert_eq!(NeuralWeights::<12>::ENCODED_LEN, 624);
+        assert_eq!(4 * (6 * 12 + 12 + 3 * 12 + 3), 492, "the paper's 492 bytes");
+        let buf = encoded();
+        assert_eq!(&buf[..4], b"SKYN");
+        assert_eq!(NeuralWeights::<12>::decode(&buf), Ok(sample()));
+        assert_eq!(sample().source_name(), "preetham");
+    }
+
+    #[test]
+    fn every_malformed_input_has_its_error() {
+        let good = encoded();
+        let decode = NeuralWeights::<12>::decode;
+        assert_eq!(
+            decode(&good[..600]),
+            Err(WeightsError::Truncated {
+                needed: 624,
+                got: 600
+            })
+        );
+        assert!(matches!(
+            decode(&good[..5]),
+            Err(WeightsError::Truncated { .. })
+        ));
+        assert!(matches!(decode(&[]), Err(WeightsError::Truncated { .. })));
+        let mut long = [0u8; 625];
+        long[..624].copy_from_slice(&good);
+        assert_eq!(
+            decode(&long),
+            Err(WeightsError::TrailingBytes {
+                needed: 624,
+                got: 625
+            })
+        );
+        let mut b = good;
+        b[0] = b'X';
+        assert_eq!(decode(&b), Err(WeightsError::BadMagic(*b"XKYN")));
+        let mut b = good;
+        b[4] = 2;
+        assert_eq!(decode(&b), Err(WeightsError::UnsupportedVersion(2)));
+        let mut b = good;
+        b[7] = 24;
+        assert_eq!(
+            decode(&b),
+            Err(WeightsError::WrongShape {
+                found: [6, 24, 3],
+                expected: [6, 12, 3]
+            })
+        );
+        assert!(matches!(
+            NeuralWeights::<24>::decode(&good),
+            Err(WeightsError::WrongShape { .. })
+        ));
+        let mut b = good;
+        b[300] ^= 1;
+        assert!(matches!(
+            decode(&b),
+            Err(WeightsError::ChecksumMismatch { .. })
+        ));
+        let mut b = good;
+        b[128..132].copy_from_slice(&f32::NAN.to_le_bytes());
+        reseal(&mut b);
+        assert_eq!(
+            decode(&b),
+            Err(WeightsError::NonFinite {
+                field: "hidden weights"
+            })
+        );
+        let mut b = good;
+        b[60..64].copy_from_slice(&(-1.0f32).to_le_bytes());
+        reseal(&mut b);
+        assert_eq!(
+            decode(&b),
+            Err(WeightsError::InvalidHeader {
+                field: "output scales"
+            })
+        );
+        let mut b = good;
+        b[9] = 0b10;
+        reseal(&mut b);
+        assert_eq!(
+            decode(&b),
+            Err(WeightsError::InvalidHeader { field: "flags" })
+        );
+        let mut b = good;
+        b[72..76].copy_from_slice(&7.0f32.to_le_bytes());
+        reseal(&mut b);
+        assert_eq!(
+            decode(&b),
+            Err(WeightsError::InvalidHeader {
+                field: "turbidity range"
+            })
+        );
+        let mut b = good;
+        b[84..88].copy_from_slice(&4.0f32.to_le_bytes());
+        reseal(&mut b);
+        assert_eq!(
+            decode(&b),
+            Err(WeightsError::InvalidHeader {
+                field: "sun zenith range"
+            })
+        );
+        let mut b = good;
+        b[90] = 0xff;
+        reseal(&mut b);
+        assert_eq!(
+            decode(&b),
+            Err(WeightsError::InvalidHeader {
+                field: "source model"
+            })
+        );
+        let mut small = [0u8; 100];
+        assert_eq!(
+            sample().encode(&mut small),
+            Err(WeightsError::BufferTooSmall { needed: 624 })
+        );
+    }
+}

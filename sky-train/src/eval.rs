@@ -1,0 +1,200 @@
+//! The paper's error measures (seed 000 §IV-A): NRMSE per test image averaged over the test set
+//! (Table 1) and irradiance per sun position (eq. 11, Table 2), for any network against its
+//! reference model; and reference / network / difference images like Figs. 6-7.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use anyhow::Result;
+use rayon::prelude::*;
+use sky_core::Vec3;
+use sky_core::geom::{Equirect, Extent};
+
+use crate::image_io::{self, RgbImage};
+use crate::render;
+use crate::sources::{self, ModelKind, SkyParams, SkySource};
+use crate::train::dataset::{self, SkyCase, TEST_SUN_AZIMUTH};
+
+/// Seed 000's Table 1 (cross-validation NRMSE) and Table 2 (mean irradiance: reference,
+/// network, absolute difference) for a model.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PaperFigures {
+    /// Table 1.
+    pub nrmse: f64,
+    /// Table 2: reference irradiance.
+    pub irradiance_reference: f64,
+    /// Table 2: network irradiance.
+    pub irradiance_network: f64,
+}
+
+impl PaperFigures {
+    /// The paper's figures for `model`, if it reports any.
+    #[must_use]
+    pub fn of(model: ModelKind) -> Option<Self> {
+        match model {
+            ModelKind::Preetham => Some(Self {
+                nrmse: 0.0145,
+                irradiance_reference: 0.11665,
+                irradiance_network: 0.11695,
+            }),
+            ModelKind::Hosek => Some(Self {
+                nrmse: 0.0395,
+                irradiance_reference: 0.03671,
+                irradiance_network: 0.03838,
+            }),
+            _ => None,
+        }
+    }
+
+    /// The relative irradiance difference of Table 2.
+    #[must_use]
+    pub fn irradiance_relative(&self) -> f64 {
+        (self.irradiance_network - self.irradiance_reference).abs() / self.irradiance_reference
+    }
+}
+
+/// One test image's figures.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImageResult {
+    /// The sky.
+    pub case: SkyCase,
+    /// Its NRMSE.
+    pub nrmse: f64,
+    /// Reference irradiance (eq. 11, luminance, the model's units).
+    pub irradiance_reference: f64,
+    /// Network irradiance.
+    pub irradiance_network: f64,
+}
+
+/// A network's figures on the paper's test protocol.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Evaluation {
+    /// The reference model.
+    pub model: ModelKind,
+    /// Per test image.
+    pub images: Vec<ImageResult>,
+}
+
+impl Evaluation {
+    /// Mean NRMSE over the test images (Table 1).
+    #[must_use]
+    pub fn mean_nrmse(&self) -> f64 {
+        mean(self.images.iter().map(|r| r.nrmse))
+    }
+
+    /// Mean over test images of |I_network − I_reference| / I_reference (Table 2, relative).
+    #[must_use]
+    pub fn mean_irradiance_relative(&self) -> f64 {
+        mean(self.images.iter().map(|r| {
+            (r.irradiance_network - r.irradiance_reference).abs() / r.irradiance_reference
+        }))
+    }
+
+    /// Seed 000's Tables 1 and 2 beside ours.
+    #[must_use]
+    pub fn report(&self) -> String {
+        let mut s = String::new();
+        let paper = PaperFigures::of(self.model);
+        let _ = writeln!(
+            s,
+            "{}: {} test images ({} directions each, upper hemisphere 128x32, sun azimuth {TEST_SUN_AZIMUTH} rad)",
+            self.model,
+            self.images.len(),
+            128 * 32
+        );
+        let _ = writeln!(s, "{:<44} {:>10} {:>10}", "", "paper", "ours");
+        let p = |f: Option<f64>| f.map_or_else(|| "-".into(), |v| format!("{v:.5}"));
+        let _ = writeln!(
+            s,
+            "{:<44} {:>10} {:>10.5}",
+            "Table 1: mean NRMSE",
+            p(paper.map(|f| f.nrmse)),
+            self.mean_nrmse()
+        );
+        let _ = writeln!(
+            s,
+            "{:<44} {:>10} {:>10.5}",
+            "Table 2: mean |irradiance difference| / ref",
+            p(paper.map(|f| f.irradiance_relative())),
+            self.mean_irradiance_relative()
+        );
+        s
+    }
+}
+
+fn mean(values: impl Iterator<Item = f64>) -> f64 {
+    let (sum, n) = values.fold((0.0, 0usize), |(s, n), v| (s + v, n + 1));
+    #[allow(clippy::cast_precision_loss)]
+    if n == 0 { 0.0 } else { sum / n as f64 }
+}
+
+/// Evaluates `network` (a sky source per test case) against `model` on the paper's test set.
+///
+/// # Errors
+/// When a case is rejected by either model.
+pub fn evaluate(
+    model: ModelKind,
+    network: &(dyn Fn(&SkyParams) -> Result<Box<dyn SkySource>> + Sync),
+) -> Result<Evaluation> {
+    let test = dataset::paper_test_set(model)?;
+    let dirs = dataset::test_directions();
+    let images = test
+        .par_iter()
+        .map(|image| {
+            let params = params_of(image.case);
+            let source = network(&params)?;
+            let mut predicted = vec![Vec3::ZERO; dirs.len()];
+            source.rgb_batch(&dirs, &mut predicted);
+            Ok(ImageResult {
+                case: image.case,
+                nrmse: dataset::nrmse(&image.reference, &predicted),
+                irradiance_reference: dataset::irradiance(&image.reference),
+                irradiance_network: dataset::irradiance(&predicted),
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok(Evaluation { model, images })
+}
+
+fn params_of(case: SkyCase) -> SkyParams {
+    SkyParams {
+        sun_zenith_deg: case.sun_zenith.to_degrees(),
+        sun_azimuth_deg: TEST_SUN_AZIMUTH.to_degrees(),
+        turbidity: case.turbidity,
+    }
+}
+
+/// Writes reference | network | 10 × |difference| side by side, like seed 000's Figs. 6-7, for
+/// one sky, as a PNG of the upper hemisphere `width` pixels wide per panel.
+///
+/// # Errors
+/// On I/O errors or rejected parameters.
+pub fn write_comparison(
+    path: &Path,
+    model: ModelKind,
+    network: &dyn SkySource,
+    params: &SkyParams,
+    width: u32,
+) -> Result<()> {
+    let grid = Equirect::new(width, (width / 4).max(1), Extent::UpperHemisphere)?;
+    let reference = sources::build(model, params)?;
+    let r = render::equirect(&*reference, &grid);
+    let n = render::equirect(network, &grid);
+    let scale = render::auto_exposure(&r, &grid);
+    let (w, h) = (r.width, r.height);
+    let mut sheet = RgbImage {
+        width: 3 * w,
+        height: h,
+        pixels: vec![Vec3::ZERO; 3 * w * h],
+    };
+    for y in 0..h {
+        for x in 0..w {
+            let (a, b) = (r.get(x, y), n.get(x, y));
+            let row = y * 3 * w;
+            sheet.pixels[row + x] = a * scale;
+            sheet.pixels[row + w + x] = b * scale;
+            sheet.pixels[row + 2 * w + x] = (a - b).abs() * scale * 10.0;
+        }
+    }
+    image_io::write_png(path, &sheet, 1.0)
+}

@@ -1,0 +1,57 @@
+//! Neural skies of sky-core: the shipped weights or any weight file.
+
+use sky_core::neural::{NeuralSky, NeuralWeights};
+use sky_core::{Sun, Vec3};
+
+use super::{ModelKind, ParamError, SkyParams, SkySource, param_error, radians};
+use crate::dispatch;
+
+/// A [`sky_core::NeuralSky`] as a [`SkySource`].
+pub struct Neural {
+    sky: NeuralSky<12>,
+    label: String,
+}
+
+impl Neural {
+    /// The neural sky of `weights` for `params`; `kind` names the model in error messages.
+    ///
+    /// # Errors
+    /// A [`ParamError`] when the sun or turbidity lies outside the weights' trained ranges.
+    #[allow(clippy::cast_possible_truncation)]
+    pub fn new(
+        weights: &NeuralWeights<12>,
+        kind: ModelKind,
+        params: &SkyParams,
+    ) -> Result<Self, ParamError> {
+        let err = |e| param_error(kind, e);
+        let sun = Sun::new(
+            radians(params.sun_zenith_deg),
+            radians(params.sun_azimuth_deg),
+        )
+        .map_err(err)?;
+        let sky = NeuralSky::new(weights, sun, params.turbidity as f32).map_err(err)?;
+        Ok(Self {
+            sky,
+            label: format!(
+                "{kind} (6-12-3 network trained on {}): sun zenith {:.2} deg, azimuth {:.2} deg, turbidity {}",
+                weights.source_name(),
+                params.sun_zenith_deg,
+                params.sun_azimuth_deg,
+                params.turbidity
+            ),
+        })
+    }
+}
+
+impl SkySource for Neural {
+    fn describe(&self) -> String {
+        self.label.clone()
+    }
+
+    fn rgb_batch(&self, dirs: &[Vec3], out: &mut [Vec3]) {
+        dispatch::fastest(
+            #[inline(always)]
+            || self.sky.rgb_batch(dirs, out),
+        );
+    }
+}

@@ -1,0 +1,229 @@
+//! Full-batch Levenberg-Marquardt (Marquardt's diagonal scaling) for least-squares problems with
+//! a few hundred parameters: the normal equations are small enough to solve exactly.
+
+use rayon::prelude::*;
+
+/// A least-squares problem: residuals r(p) and their Jacobian, summed over examples.
+pub trait LeastSquares: Sync {
+    /// Number of examples.
+    fn examples(&self) -> usize;
+    /// Adds example `i`'s residuals to `cost` (sum of squares) and, when `normal` is given,
+    /// its Jacobian rows to JᵀJ (upper triangle, row-major P × P) and Jᵀr.
+    fn accumulate(&self, params: &[f64], i: usize, acc: &mut Accumulator, normal: bool);
+}
+
+/// Partial sums of the normal equations.
+#[derive(Debug, Clone)]
+pub struct Accumulator {
+    /// Σ r².
+    pub cost: f64,
+    /// JᵀJ, upper triangle, row-major.
+    pub jtj: Vec<f64>,
+    /// Jᵀr.
+    pub jtr: Vec<f64>,
+    /// Scratch for the problem's use.
+    pub scratch: crate::train::net::Scratch,
+    /// Scratch gradient rows for the problem's use.
+    pub rows: [Vec<f64>; 3],
+}
+
+impl Accumulator {
+    fn new(p: usize, normal: bool) -> Self {
+        Self {
+            cost: 0.0,
+            jtj: if normal { vec![0.0; p * p] } else { Vec::new() },
+            jtr: if normal { vec![0.0; p] } else { Vec::new() },
+            scratch: crate::train::net::Scratch::default(),
+            rows: Default::default(),
+        }
+    }
+
+    /// Adds one residual `r` with Jacobian row `row` (length P).
+    #[inline(always)]
+    pub fn add_row(&mut self, r: f64, row: &[f64]) {
+        let p = row.len();
+        for (a, &ra) in row.iter().enumerate() {
+            if ra == 0.0 {
+                continue;
+            }
+            self.jtr[a] += ra * r;
+            let dst = &mut self.jtj[a * p + a..(a + 1) * p];
+            for (d, &rb) in dst.iter_mut().zip(&row[a..]) {
+                *d += ra * rb;
+            }
+        }
+    }
+
+    fn merge(mut self, other: Self) -> Self {
+        self.cost += other.cost;
+        for (a, b) in self.jtj.iter_mut().zip(&other.jtj) {
+            *a += b;
+        }
+        for (a, b) in self.jtr.iter_mut().zip(&other.jtr) {
+            *a += b;
+        }
+        self
+    }
+}
+
+/// Σ r² at `params`, and the normal equations when `normal`, over all examples, in parallel.
+pub fn evaluate(problem: &impl LeastSquares, params: &[f64], normal: bool) -> Accumulator {
+    let p = params.len();
+    let n = problem.examples();
+    let chunk = n.div_ceil(64).max(1);
+    (0..n.div_ceil(chunk))
+        .into_par_iter()
+        .map(|c| {
+            let mut acc = Accumulator::new(p, normal);
+            crate::dispatch::fastest(
+                #[inline(always)]
+                || {
+                    for i in c * chunk..((c + 1) * chunk).min(n) {
+                        problem.accumulate(params, i, &mut acc, normal);
+                    }
+                },
+            );
+            acc
+        })
+        .reduce(|| Accumulator::new(p, normal), Accumulator::merge)
+}
+
+/// Solves (A + λ diag(A)) x = −g for symmetric positive (semi)definite A given as its upper
+/// triangle, by Cholesky. Returns `None` when the damped matrix is not positive definite.
+#[must_use]
+pub fn damped_step(jtj: &[f64], jtr: &[f64], lambda: f64) -> Option<Vec<f64>> {
+    let p = jtr.len();
+    let mut l = vec![0.0; p * p];
+    for i in 0..p {
+        for j in i..p {
+            let mut v = jtj[i * p + j];
+            if i == j {
+                v += lambda * v.max(1e-12) + 1e-12;
+            }
+            l[j * p + i] = v; // lower triangle of A
+        }
+    }
+    // In-place Cholesky: A = L Lᵀ.
+    for j in 0..p {
+        let mut d = l[j * p + j];
+        for k in 0..j {
+            d -= l[j * p + k] * l[j * p + k];
+        }
+        if d <= 0.0 || !d.is_finite() {
+            return None;
+        }
+        let d = d.sqrt();
+        l[j * p + j] = d;
+        for i in j + 1..p {
+            let mut v = l[i * p + j];
+            for k in 0..j {
+                v -= l[i * p + k] * l[j * p + k];
+            }
+            l[i * p + j] = v / d;
+        }
+    }
+    // L y = −g, then Lᵀ x = y.
+    let mut y = vec![0.0; p];
+    for i in 0..p {
+        let mut v = -jtr[i];
+        for k in 0..i {
+            v -= l[i * p + k] * y[k];
+        }
+        y[i] = v / l[i * p + i];
+    }
+    let mut x = vec![0.0; p];
+    for i in (0..p).rev() {
+        let mut v = y[i];
+        for k in i + 1..p {
+            v -= l[k * p + i] * x[k];
+        }
+        x[i] = v / l[i * p + i];
+    }
+    Some(x)
+}
+
+/// State of a Levenberg-Marquardt run, advanced one accepted step at a time.
+#[derive(Debug, Clone)]
+pub struct Lm {
+    /// Current parameters.
+    pub params: Vec<f64>,
+    /// Σ r² at `params`.
+    pub cost: f64,
+    /// Damping.
+    pub lambda: f64,
+}
+
+impl Lm {
+    /// Starts at `params`.
+    pub fn new(problem: &impl LeastSquares, params: Vec<f64>) -> Self {
+        let cost = evaluate(problem, &params, false).cost;
+        Self {
+            params,
+            cost,
+            lambda: 1e-2,
+        }
+    }
+
+    /// One iteration: builds the normal equations and tries damped steps until one lowers the
+    /// cost. Returns false when no step helps (converged or stuck).
+    pub fn step(&mut self, problem: &impl LeastSquares) -> bool {
+        let acc = evaluate(problem, &self.params, true);
+        for _ in 0..12 {
+            if let Some(delta) = damped_step(&acc.jtj, &acc.jtr, self.lambda) {
+                let trial: Vec<f64> = self.params.iter().zip(&delta).map(|(p, d)| p + d).collect();
+                let cost = evaluate(problem, &trial, false).cost;
+                if cost.is_finite() && cost < self.cost {
+                    self.params = trial;
+                    self.cost = cost;
+                    self.lambda = (self.lambda / 3.0).max(1e-12);
+                    return true;
+                }
+            }
+            self.lambda *= 4.0;
+            if self.lambda > 1e12 {
+                break;
+            }
+        }
+        false
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Fits y = a e^{b x} to exact data: LM must recover (a, b).
+    struct Exp {
+        xs: Vec<f64>,
+        ys: Vec<f64>,
+    }
+
+    impl LeastSquares for Exp {
+        fn examples(&self) -> usize {
+            self.xs.len()
+        }
+        fn accumulate(&self, p: &[f64], i: usize, acc: &mut Accumulator, normal: bool) {
+            let e = (p[1] * self.xs[i]).exp();
+            let r = p[0] * e - self.ys[i];
+            acc.cost += r * r;
+            if normal {
+                acc.add_row(r, &[e, p[0] * self.xs[i] * e]);
+            }
+        }
+    }
+
+    #[test]
+    fn recovers_an_exponential() {
+        let xs: Vec<f64> = (0..50).map(|i| f64::from(i) / 25.0).collect();
+        let ys = xs.iter().map(|x| 2.5 * (-1.3 * x).exp()).collect();
+        let problem = Exp { xs, ys };
+        let mut lm = Lm::new(&problem, vec![1.0, 0.0]);
+        for _ in 0..100 {
+            if !lm.step(&problem) {
+                break;
+            }
+        }
+        assert!((lm.params[0] - 2.5).abs() < 1e-8, "{:?}", lm.params);
+        assert!((lm.params[1] + 1.3).abs() < 1e-8, "{:?}", lm.params);
+    }
+}

@@ -1,0 +1,484 @@
+//! Training the neural sky (seed 000 §III-C): data sets, the paper's backpropagation with
+//! momentum, and full-batch Levenberg-Marquardt, which wins by orders of magnitude for a
+//! 123-parameter network (measured: see the README).
+
+pub mod backprop;
+pub mod dataset;
+pub mod lm;
+pub mod net;
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use indicatif::{ProgressBar, ProgressStyle};
+use rand::SeedableRng;
+use sky_core::Vec3;
+
+use crate::sources::ModelKind;
+use dataset::{DataSet, Sampling, TestImage};
+use lm::{Accumulator, LeastSquares, Lm};
+use net::{Net, Scratch};
+
+/// The optimiser.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Optimizer {
+    /// Full-batch Levenberg-Marquardt on the linear-radiance residuals, weighted per sky by
+    /// 1/(max − min) so that the loss is the paper's NRMSE².
+    Lm,
+    /// Seed 000's baseline: per-example backpropagation with momentum (β = 0.01, μ = 0.9) on the
+    /// eq. 9 loss over the scaled targets y = 1/(1 + 2L).
+    Backprop,
+}
+
+/// What training needs to know.
+#[derive(Debug, Clone)]
+pub struct TrainConfig {
+    /// The sky model learned.
+    pub model: ModelKind,
+    /// Hidden layer sizes (`[12]` is the paper's network).
+    pub hidden: Vec<usize>,
+    /// The optimiser.
+    pub optimizer: Optimizer,
+    /// Random seed (initial weights, view jitter, example order).
+    pub seed: u64,
+    /// Stop after this many iterations (LM steps or backprop epochs).
+    pub max_iterations: usize,
+    /// Stop after this many seconds of wall time.
+    pub max_seconds: f64,
+    /// Stop when the validation NRMSE has not improved for this many iterations.
+    pub patience: usize,
+    /// Stop as soon as the validation NRMSE is at most this.
+    pub target_nrmse: f64,
+    /// Training-set sampling.
+    pub sampling: Sampling,
+    /// Random starts tried (each a few iterations) before the best one is trained on.
+    pub restarts: usize,
+    /// Resume from and save to this checkpoint file.
+    pub checkpoint: Option<PathBuf>,
+    /// Show a progress bar.
+    pub progress: bool,
+    /// Record when the validation NRMSE first reaches this (seed 000's Table 1 figure by
+    /// default).
+    pub milestone: f64,
+}
+
+impl TrainConfig {
+    /// Defaults for `model`: the paper's network and sampling, LM, 60 s at most.
+    #[must_use]
+    pub fn new(model: ModelKind) -> Self {
+        Self {
+            model,
+            hidden: vec![12],
+            optimizer: Optimizer::Lm,
+            seed: 1,
+            max_iterations: 400,
+            max_seconds: 60.0,
+            patience: 40,
+            target_nrmse: 0.0,
+            sampling: Sampling::paper(model),
+            restarts: 4,
+            checkpoint: None,
+            progress: true,
+            milestone: crate::eval::PaperFigures::of(model).map_or(0.0, |f| f.nrmse),
+        }
+    }
+}
+
+/// Input standardisation and output scaling of a trained network.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scaling {
+    /// u_k = (V_k − offset_k) · scale_k.
+    pub input_offset: [f64; 6],
+    /// See `input_offset`.
+    pub input_scale: [f64; 6],
+    /// Radiance = output_scale · ½ z².
+    pub output_scale: f64,
+}
+
+impl Scaling {
+    /// Standardises every input over `set` (zero mean, unit variance; an input with no spread,
+    /// such as a zeroed turbidity, gets scale 0) and scales radiance by its mean.
+    #[must_use]
+    pub fn fit(set: &DataSet) -> Self {
+        #[allow(clippy::cast_precision_loss)]
+        let n = set.inputs.len().max(1) as f64;
+        let mut input_offset = [0.0; 6];
+        let mut input_scale = [0.0; 6];
+        for k in 0..6 {
+            let mean = set.inputs.iter().map(|v| v[k]).sum::<f64>() / n;
+            let var = set
+                .inputs
+                .iter()
+                .map(|v| (v[k] - mean).powi(2))
+                .sum::<f64>()
+                / n;
+            input_offset[k] = mean;
+            input_scale[k] = if var > 1e-18 { 1.0 / var.sqrt() } else { 0.0 };
+        }
+        let mean = set.targets.iter().flatten().sum::<f64>() / (3.0 * n);
+        Self {
+            input_offset,
+            input_scale,
+            output_scale: if mean > 0.0 { mean } else { 1.0 },
+        }
+    }
+
+    /// The normalised input u of V.
+    #[must_use]
+    pub fn apply(&self, v: &[f64; 6]) -> [f64; 6] {
+        std::array::from_fn(|k| (v[k] - self.input_offset[k]) * self.input_scale[k])
+    }
+}
+
+/// The least-squares problem LM solves: per example and channel, the residual
+/// w_case (½ z² − L / s), with w_case = 1 / (max − min) of the case's scaled targets.
+struct Problem<'a> {
+    net: &'a Net,
+    inputs: Vec<[f64; 6]>,
+    targets: Vec<[f64; 3]>,
+    weights: Vec<f64>,
+}
+
+impl<'a> Problem<'a> {
+    fn new(net: &'a Net, set: &DataSet, scaling: &Scaling) -> Self {
+        let mut lo = vec![f64::INFINITY; set.cases.len()];
+        let mut hi = vec![f64::NEG_INFINITY; set.cases.len()];
+        let targets: Vec<[f64; 3]> = set
+            .targets
+            .iter()
+            .map(|t| t.map(|c| c / scaling.output_scale))
+            .collect();
+        for (t, &k) in targets.iter().zip(&set.case) {
+            for c in t {
+                lo[k] = lo[k].min(*c);
+                hi[k] = hi[k].max(*c);
+            }
+        }
+        Self {
+            net,
+            inputs: set.inputs.iter().map(|v| scaling.apply(v)).collect(),
+            weights: set
+                .case
+                .iter()
+                .map(|&k| 1.0 / (hi[k] - lo[k]).max(1e-9))
+                .collect(),
+            targets,
+        }
+    }
+}
+
+impl LeastSquares for Problem<'_> {
+    fn examples(&self) -> usize {
+        self.inputs.len()
+    }
+
+    #[inline(always)]
+    fn accumulate(&self, params: &[f64], i: usize, acc: &mut Accumulator, normal: bool) {
+        let w = self.weights[i];
+        let sizes = &self.net.sizes;
+        if normal {
+            let mut rows = std::mem::take(&mut acc.rows);
+            let z = net::jacobian(sizes, params, &self.inputs[i], &mut acc.scratch, &mut rows);
+            for c in 0..3 {
+                let r = w * (0.5 * z[c] * z[c] - self.targets[i][c]);
+                acc.cost += r * r;
+                let scale = w * z[c];
+                for g in &mut rows[c] {
+                    *g *= scale;
+                }
+                acc.add_row(r, &rows[c]);
+            }
+            acc.rows = rows;
+        } else {
+            let z = net::forward(sizes, params, &self.inputs[i], &mut acc.scratch);
+            for c in 0..3 {
+                let r = w * (0.5 * z[c] * z[c] - self.targets[i][c]);
+                acc.cost += r * r;
+            }
+        }
+    }
+}
+
+/// A trained network with its scaling and how it was obtained.
+#[derive(Debug, Clone)]
+pub struct Trained {
+    /// The network.
+    pub net: Net,
+    /// Its input/output normalisation.
+    pub scaling: Scaling,
+    /// Mean validation NRMSE.
+    pub validation_nrmse: f64,
+    /// Iterations run.
+    pub iterations: usize,
+    /// Wall time in seconds.
+    pub seconds: f64,
+    /// Training examples.
+    pub examples: usize,
+    /// Wall seconds until the validation NRMSE first reached the configured milestone.
+    pub milestone_seconds: Option<f64>,
+}
+
+impl Trained {
+    /// Linear RGB radiance predicted for `image`'s sky at the test directions, with the sun at
+    /// [`dataset::TEST_SUN_AZIMUTH`] (views rotated by eq. 10).
+    #[must_use]
+    pub fn predict(&self, case: dataset::SkyCase, dirs: &[Vec3], sun_azimuth: f64) -> Vec<Vec3> {
+        let rotate = sun_azimuth - std::f64::consts::PI;
+        let (sr, cr) = rotate.sin_cos();
+        let mut s = Scratch::default();
+        dirs.iter()
+            .map(|d| {
+                let (x0, y0, z0) = (f64::from(d.x), f64::from(d.y), f64::from(d.z));
+                let v = [x0 * cr + y0 * sr, y0 * cr - x0 * sr, z0];
+                let u = self
+                    .scaling
+                    .apply(&dataset::input(case.turbidity, case.sun_zenith, v));
+                let z = self.net.forward(&u, &mut s);
+                #[allow(clippy::cast_possible_truncation)]
+                let c = z.map(|z| (self.scaling.output_scale * 0.5 * z * z) as f32);
+                Vec3::from_array(c)
+            })
+            .collect()
+    }
+
+    /// Mean NRMSE over `images`.
+    #[must_use]
+    pub fn mean_nrmse(&self, images: &[TestImage]) -> f64 {
+        let dirs = dataset::test_directions();
+        let sum: f64 = images
+            .iter()
+            .map(|im| {
+                let p = self.predict(im.case, &dirs, dataset::TEST_SUN_AZIMUTH);
+                dataset::nrmse(&im.reference, &p)
+            })
+            .sum();
+        #[allow(clippy::cast_precision_loss)]
+        let n = images.len().max(1) as f64;
+        sum / n
+    }
+}
+
+/// The validation images used for early stopping: turbidities half-way between the test
+/// turbidities' neighbours and the training ones (never a test or training sky), 5 sun zeniths.
+///
+/// # Errors
+/// When the model rejects a case.
+pub fn validation_set(model: ModelKind) -> Result<Vec<TestImage>> {
+    let (lo, hi) = model.turbidity_range();
+    let turbidities = [lo + 0.25, 0.5 * (lo + hi) + 0.25, hi - 0.25];
+    dataset::test_set(model, &turbidities, &dataset::sun_zeniths(5))
+}
+
+fn progress_bar(config: &TrainConfig) -> ProgressBar {
+    if !config.progress {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(config.max_iterations as u64);
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} {elapsed:>4} [{bar:30}] {pos}/{len} {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    bar
+}
+
+/// Trains a network as `config` says, on `set` (see [`DataSet::training`]), stopping early on
+/// the validation images.
+///
+/// # Errors
+/// When the checkpoint cannot be read or written, or the model rejects a case.
+pub fn train(config: &TrainConfig, set: &DataSet, validation: &[TestImage]) -> Result<Trained> {
+    let start = Instant::now();
+    let scaling = Scaling::fit(set);
+    let mut sizes = vec![6];
+    sizes.extend(&config.hidden);
+    sizes.push(3);
+    let bar = progress_bar(config);
+
+    let resumed = match &config.checkpoint {
+        Some(path) if path.exists() => Some(
+            checkpoint::read(path, &sizes)
+                .with_context(|| format!("cannot resume from {}", path.display()))?,
+        ),
+        _ => None,
+    };
+    let (mut net, first_iteration) = match resumed {
+        Some((net, it)) => (net, it),
+        None => (initial_net(config, &sizes, set, &scaling), 0),
+    };
+    let mut best = Trained {
+        net: net.clone(),
+        scaling: scaling.clone(),
+        validation_nrmse: f64::INFINITY,
+        iterations: first_iteration,
+        seconds: 0.0,
+        examples: set.inputs.len(),
+        milestone_seconds: None,
+    };
+    best.validation_nrmse = best.mean_nrmse(validation);
+    let mut milestone_seconds = None;
+    let mut since_best = 0;
+    let mut lm_state: Option<Lm> = None;
+    let mut momentum = vec![0.0; net.params.len()];
+    let mut rng = rand::rngs::StdRng::seed_from_u64(config.seed.wrapping_add(17));
+    bar.set_position(first_iteration as u64);
+    for iteration in first_iteration..config.max_iterations {
+        let moved = match config.optimizer {
+            Optimizer::Lm => {
+                let problem = Problem::new(&net, set, &scaling);
+                let state = lm_state.get_or_insert_with(|| Lm::new(&problem, net.params.clone()));
+                let moved = state.step(&problem);
+                net.params.clone_from(&state.params);
+                moved
+            }
+            Optimizer::Backprop => {
+                backprop::epoch(&mut net, &mut momentum, set, &scaling, &mut rng);
+                true
+            }
+        };
+        let current = Trained {
+            net: net.clone(),
+            scaling: scaling.clone(),
+            validation_nrmse: 0.0,
+            iterations: iteration + 1,
+            seconds: start.elapsed().as_secs_f64(),
+            examples: set.inputs.len(),
+            milestone_seconds: None,
+        };
+        let v = current.mean_nrmse(validation);
+        if v <= config.milestone && milestone_seconds.is_none() {
+            milestone_seconds = Some(start.elapsed().as_secs_f64());
+        }
+        if v < best.validation_nrmse {
+            best = Trained {
+                validation_nrmse: v,
+                ..current
+            };
+            since_best = 0;
+        } else {
+            since_best += 1;
+        }
+        bar.set_position(iteration as u64 + 1);
+        bar.set_message(format!(
+            "validation NRMSE {v:.5} (best {:.5})",
+            best.validation_nrmse
+        ));
+        if let Some(path) = &config.checkpoint {
+            checkpoint::write(path, &net, iteration + 1)?;
+        }
+        let elapsed = start.elapsed().as_secs_f64();
+        if !moved
+            || since_best >= config.patience
+            || elapsed >= config.max_seconds
+            || best.validation_nrmse <= config.target_nrmse
+        {
+            break;
+        }
+    }
+    bar.finish_and_clear();
+    best.seconds = start.elapsed().as_secs_f64();
+    best.milestone_seconds = milestone_seconds;
+    Ok(best)
+}
+
+/// The starting network: the best of `config.restarts` random starts after a few LM steps each
+/// (random starts of a 123-parameter network differ a lot; a short race is cheap).
+fn initial_net(config: &TrainConfig, sizes: &[usize], set: &DataSet, scaling: &Scaling) -> Net {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(config.seed);
+    let candidates: Vec<Net> = (0..config.restarts.max(1))
+        .map(|_| Net::random(sizes, &mut rng, 1.0))
+        .collect();
+    if config.optimizer == Optimizer::Backprop || candidates.len() == 1 {
+        return candidates
+            .into_iter()
+            .next()
+            .unwrap_or_else(|| Net::random(sizes, &mut rng, 1.0));
+    }
+    // The race runs on every 8th example: enough to rank the starts, 8 times cheaper.
+    let subsample = DataSet {
+        inputs: set.inputs.iter().step_by(8).copied().collect(),
+        targets: set.targets.iter().step_by(8).copied().collect(),
+        case: set.case.iter().step_by(8).copied().collect(),
+        cases: set.cases.clone(),
+    };
+    let mut best: Option<(f64, Net)> = None;
+    for mut net in candidates {
+        let problem = Problem::new(&net, &subsample, scaling);
+        let mut state = Lm::new(&problem, net.params.clone());
+        for _ in 0..5 {
+            if !state.step(&problem) {
+                break;
+            }
+        }
+        net.params = state.params;
+        if best.as_ref().is_none_or(|(c, _)| state.cost < *c) {
+            best = Some((state.cost, net));
+        }
+    }
+    best.map_or_else(|| Net::random(sizes, &mut rng, 1.0), |(_, n)| n)
+}
+
+/// Checkpoints: the iteration count and the parameters, written atomically after every
+/// iteration, so that a killed run resumes where it stopped.
+pub mod checkpoint {
+    use std::path::Path;
+
+    use anyhow::{Result, bail};
+
+    use super::Net;
+    use crate::image_io::write_text;
+
+    /// Writes `net` and `iteration` to `path`.
+    ///
+    /// # Errors
+    /// On I/O errors.
+    pub fn write(path: &Path, net: &Net, iteration: usize) -> Result<()> {
+        let sizes: Vec<String> = net.sizes.iter().map(ToString::to_string).collect();
+        let params: Vec<String> = net.params.iter().map(|p| format!("{p:e}")).collect();
+        write_text(
+            path,
+            &format!(
+                "sky-train checkpoint 1\nsizes {}\niteration {iteration}\n{}\n",
+                sizes.join(" "),
+                params.join("\n")
+            ),
+        )
+    }
+
+    /// Reads a checkpoint of a network with `sizes`.
+    ///
+    /// # Errors
+    /// When the file cannot be read or is not a checkpoint of that shape.
+    pub fn read(path: &Path, sizes: &[usize]) -> Result<(Net, usize)> {
+        let text = std::fs::read_to_string(path)?;
+        let mut lines = text.lines();
+        if lines.next() != Some("sky-train checkpoint 1") {
+            bail!("not a sky-train checkpoint");
+        }
+        let found: Vec<usize> = lines
+            .next()
+            .and_then(|l| l.strip_prefix("sizes "))
+            .map(|l| l.split(' ').filter_map(|s| s.parse().ok()).collect())
+            .unwrap_or_default();
+        if found != sizes {
+            bail!("the checkpoint is a {found:?} network, this run trains {sizes:?}");
+        }
+        let iteration = lines
+            .next()
+            .and_then(|l| l.strip_prefix("iteration "))
+            .and_then(|l| l.parse().ok())
+            .ok_or_else(|| anyhow::anyhow!("no iteration line"))?;
+        let params: Vec<f64> = lines.map(str::parse).collect::<Result<_, _>>()?;
+        if params.len() != Net::param_count(sizes) || params.iter().any(|p| !p.is_finite()) {
+            bail!("the checkpoint's parameters are incomplete or not finite");
+        }
+        Ok((
+            Net {
+                sizes: sizes.to_vec(),
+                params,
+            },
+            iteration,
+        ))
+    }
+}
