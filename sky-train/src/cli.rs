@@ -131,9 +131,19 @@ pub struct TrainArgs {
     /// Training sun zeniths, uniform over [0, 90] deg inclusive (2 to 1000).
     #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u16).range(2..=1000))]
     pub sun_zeniths: u16,
+    /// LM weight of each sky's irradiance residual (0 to 100; 0 = NRMSE only).
+    #[arg(long, default_value_t = 1.0, value_parser = irradiance_weight)]
+    pub irradiance_weight: f64,
     /// View strata per training sky: zenith x azimuth (each 1 to 1000).
     #[arg(long, default_value = "10x20", value_parser = strata)]
     pub views: (usize, usize),
+}
+
+fn irradiance_weight(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if (0.0..=100.0).contains(&v) => Ok(v),
+        _ => Err("expected a weight in [0, 100]".into()),
+    }
 }
 
 fn strata(s: &str) -> Result<(usize, usize), String> {
@@ -504,6 +514,7 @@ fn train_command(args: &TrainArgs, output: &mut dyn Write) -> Result<()> {
         config.sampling.turbidities.clone_from(t);
     }
     config.sampling.sun_zeniths = usize::from(args.sun_zeniths);
+    config.irradiance_weight = args.irradiance_weight;
     (config.sampling.view_zeniths, config.sampling.view_azimuths) = args.views;
     config.max_seconds = args.max_seconds;
     config.max_iterations = args.max_iterations as usize;

@@ -122,3 +122,67 @@ fn bad_sample_input_names_the_line() {
     assert!(stderr.contains("line 3"), "{stderr}");
     assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
 }
+
+#[test]
+fn neural_model_errors_name_the_argument() {
+    fails(
+        &["sample", "--sun-zenith", "30", "--model", "neural"],
+        &["--weights"],
+    );
+    fails(
+        &["sample", "--sun-zenith", "30", "--weights", "x.skyn"],
+        &["--weights", "--model neural"],
+    );
+    fails(
+        &[
+            "sample",
+            "--sun-zenith",
+            "30",
+            "--model",
+            "neural",
+            "--weights",
+            "/nonexistent.skyn",
+        ],
+        &["--weights", "/nonexistent.skyn"],
+    );
+    let dir = tempfile::tempdir().expect("temp dir");
+    let bad = dir.path().join("bad.skyn");
+    std::fs::write(&bad, b"SKYN\x01\x00\x06\x0c\x03").expect("write");
+    let bad = bad.to_str().expect("UTF-8 path");
+    fails(
+        &[
+            "sample",
+            "--sun-zenith",
+            "30",
+            "--model",
+            "neural",
+            "--weights",
+            bad,
+        ],
+        &["--weights", "truncated"],
+    );
+    fails(
+        &[
+            "sample",
+            "--sun-zenith",
+            "30",
+            "--model",
+            "neural-hosek",
+            "--turbidity",
+            "11",
+        ],
+        &["--turbidity", "[1, 10]"],
+    );
+    fails(
+        &[
+            "sample",
+            "--sun-zenith",
+            "30",
+            "--model",
+            "hosek",
+            "--turbidity",
+            "0.5",
+        ],
+        &["--turbidity", "[1, 10]"],
+    );
+}

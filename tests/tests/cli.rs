@@ -218,3 +218,98 @@ fn render_png_and_bad_extension() {
         "no temporary file is left behind"
     );
 }
+
+/// `sample --model hosek` is the hw-skymodel crate's Hosek-Wilkie sky (albedo 0.5), with the
+/// view's zenith angle and angle to the sun computed here in f64.
+#[test]
+fn sample_hosek_matches_hw_skymodel() {
+    let mut input = String::new();
+    for zi in 0..=9 {
+        for ai in 0..12 {
+            input += &format!("{},{}\n", f64::from(zi) * 10.0, f64::from(ai) * 30.0);
+        }
+    }
+    let (sun_zenith, sun_azimuth, turbidity) = (40.0f64, 75.0f64, 4.5f64);
+    let rows = parse_csv(&run(
+        &[
+            "sample",
+            "--model",
+            "hosek",
+            "--sun-zenith",
+            "40",
+            "--sun-azimuth",
+            "75",
+            "--turbidity",
+            "4.5",
+        ],
+        &input,
+    ));
+    #[allow(clippy::cast_possible_truncation)]
+    let state = hw_skymodel::rgb::SkyState::new(&hw_skymodel::rgb::SkyParams {
+        elevation: (90.0 - sun_zenith).to_radians() as f32,
+        turbidity: turbidity as f32,
+        albedo: [0.5; 3],
+    })
+    .expect("valid Hosek-Wilkie parameters");
+    let sun = reference::direction(sun_zenith.to_radians(), sun_azimuth.to_radians());
+    let mut worst = 0.0f64;
+    for row in rows {
+        let v = reference::direction(row[0].to_radians(), row[1].to_radians());
+        let gamma = reference::angle_between(v, sun);
+        #[allow(clippy::cast_possible_truncation)]
+        let (theta, gamma) = (row[0].to_radians() as f32, gamma as f32);
+        use hw_skymodel::rgb::Channel;
+        let want = [
+            state.radiance(theta, gamma, Channel::R),
+            state.radiance(theta, gamma, Channel::G),
+            state.radiance(theta, gamma, Channel::B),
+        ];
+        for c in 0..3 {
+            worst = worst.max((row[5 + c] - f64::from(want[c])).abs() / f64::from(want[c]));
+        }
+    }
+    println!("sample --model hosek vs hw-skymodel: max relative difference {worst:.3e}");
+    assert!(worst <= 2e-5, "max relative difference {worst:.3e}");
+}
+
+/// The shipped network through `--model neural-preetham` and through `--model neural --weights`
+/// with the committed weight file give the same values; both are sky-core's `NeuralSky`.
+#[test]
+fn sample_neural_models_agree_with_sky_core() {
+    let weights = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../sky-core/weights/preetham.skyn"
+    );
+    let input = "0,0\n30,45\n60,200\n89,300\n";
+    let sky = [
+        "--sun-zenith",
+        "35",
+        "--sun-azimuth",
+        "10",
+        "--turbidity",
+        "3.5",
+    ];
+    let mut shipped = vec!["sample", "--model", "neural-preetham"];
+    shipped.extend(sky);
+    let mut file = vec!["sample", "--model", "neural", "--weights", weights];
+    file.extend(sky);
+    let (a, b) = (run(&shipped, input), run(&file, input));
+    assert_eq!(a, b);
+    let network = sky_core::NeuralSky::new(
+        &sky_core::neural::pretrained::PREETHAM,
+        sky_core::Sun::new(35f32.to_radians(), 10f32.to_radians()).expect("sun"),
+        3.5,
+    )
+    .expect("in the trained domain");
+    for row in parse_csv(&a) {
+        #[allow(clippy::cast_possible_truncation)]
+        let rgb = network.rgb(sky_core::geom::direction(
+            row[0].to_radians() as f32,
+            row[1].to_radians() as f32,
+        ));
+        for c in 0..3 {
+            let e = (row[5 + c] - f64::from(rgb[c])).abs() / f64::from(rgb[c]);
+            assert!(e < 1e-6, "{row:?} vs {rgb}");
+        }
+    }
+}

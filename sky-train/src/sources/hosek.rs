@@ -57,11 +57,12 @@ impl Hosek {
         })
     }
 
-    /// RGB radiance towards `dir` (unit vector).
+    /// RGB radiance towards `dir` (unit vector); 0 below the horizon (z < −1e-6: as for
+    /// sky-core's Preetham sky, the f32 nearest π/2 still counts as the horizon).
     #[must_use]
     pub fn rgb(&self, dir: Vec3) -> Vec3 {
         use hw_skymodel::rgb::Channel;
-        if dir.z < 0.0 {
+        if dir.z < -1e-6 {
             return Vec3::ZERO;
         }
         let theta = geom::zenith_azimuth(dir).0;

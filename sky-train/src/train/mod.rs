@@ -61,6 +61,9 @@ pub struct TrainConfig {
     /// Record when the validation NRMSE first reaches this (seed 000's Table 1 figure by
     /// default).
     pub milestone: f64,
+    /// Weight of each sky's irradiance residual in LM (0 = NRMSE only; 1 = a relative
+    /// irradiance error costs as much as an NRMSE of the same size).
+    pub irradiance_weight: f64,
 }
 
 impl TrainConfig {
@@ -81,6 +84,7 @@ impl TrainConfig {
             checkpoint: None,
             progress: true,
             milestone: crate::eval::PaperFigures::of(model).map_or(0.0, |f| f.nrmse),
+            irradiance_weight: 1.0,
         }
     }
 }
@@ -133,15 +137,32 @@ impl Scaling {
 
 /// The least-squares problem LM solves: per example and channel, the residual
 /// w_case (½ z² − L / s), with w_case = 1 / (max − min) of the case's scaled targets.
+///
+/// Each sky also contributes one residual for its irradiance (eq. 11): λ (Î − I)/I with Î, I
+/// the network's and the model's cosine-weighted sums of luminance over the sky's views
+/// (weights cos θ sin θ for views stratified uniformly in θ and φ), and
+/// λ = `irradiance_weight` · √(residuals of the sky), so that a relative irradiance error costs
+/// as much as an NRMSE of the same size.
 struct Problem<'a> {
     net: &'a Net,
     inputs: Vec<[f64; 6]>,
     targets: Vec<[f64; 3]>,
     weights: Vec<f64>,
+    /// Quadrature weight cos θ sin θ of each example's view.
+    quadrature: Vec<f64>,
+    /// Examples of each sky.
+    members: Vec<Vec<usize>>,
+    /// Reference irradiance of each sky (scaled units).
+    irradiance: Vec<f64>,
+    /// λ per sky (0: no irradiance residuals).
+    lambda: Vec<f64>,
 }
 
+/// Luminance of linear sRGB (the middle row of the sRGB → XYZ matrix).
+const LUMINANCE: [f64; 3] = [0.2126, 0.7152, 0.0722];
+
 impl<'a> Problem<'a> {
-    fn new(net: &'a Net, set: &DataSet, scaling: &Scaling) -> Self {
+    fn new(net: &'a Net, set: &DataSet, scaling: &Scaling, irradiance_weight: f64) -> Self {
         let mut lo = vec![f64::INFINITY; set.cases.len()];
         let mut hi = vec![f64::NEG_INFINITY; set.cases.len()];
         let targets: Vec<[f64; 3]> = set
@@ -155,6 +176,28 @@ impl<'a> Problem<'a> {
                 hi[k] = hi[k].max(*c);
             }
         }
+        let quadrature: Vec<f64> = set
+            .inputs
+            .iter()
+            .map(|v| v[4].max(0.0) * (1.0 - v[4] * v[4]).max(0.0).sqrt())
+            .collect();
+        let mut members = vec![Vec::new(); set.cases.len()];
+        for (i, &k) in set.case.iter().enumerate() {
+            members[k].push(i);
+        }
+        let irradiance: Vec<f64> = members
+            .iter()
+            .map(|m| {
+                m.iter()
+                    .map(|&i| quadrature[i] * dot(LUMINANCE, targets[i]))
+                    .sum::<f64>()
+            })
+            .collect();
+        #[allow(clippy::cast_precision_loss)]
+        let lambda = members
+            .iter()
+            .map(|m| irradiance_weight * (3.0 * m.len() as f64).sqrt())
+            .collect();
         Self {
             net,
             inputs: set.inputs.iter().map(|v| scaling.apply(v)).collect(),
@@ -164,17 +207,71 @@ impl<'a> Problem<'a> {
                 .map(|&k| 1.0 / (hi[k] - lo[k]).max(1e-9))
                 .collect(),
             targets,
+            quadrature,
+            members,
+            irradiance,
+            lambda,
+        }
+    }
+
+    /// The irradiance residual of sky `k` (see the type's docs).
+    fn accumulate_irradiance(&self, params: &[f64], k: usize, acc: &mut Accumulator, normal: bool) {
+        let (lambda, reference) = (self.lambda[k], self.irradiance[k]);
+        if lambda == 0.0 || reference <= 0.0 {
+            return;
+        }
+        let sizes = &self.net.sizes;
+        let mut predicted = 0.0;
+        let mut gradient = vec![0.0; if normal { params.len() } else { 0 }];
+        let mut rows = std::mem::take(&mut acc.rows);
+        for &i in &self.members[k] {
+            let q = self.quadrature[i];
+            let z = if normal {
+                net::jacobian(sizes, params, &self.inputs[i], &mut acc.scratch, &mut rows)
+            } else {
+                net::forward(sizes, params, &self.inputs[i], &mut acc.scratch)
+            };
+            predicted += q
+                * (0..3)
+                    .map(|c| LUMINANCE[c] * 0.5 * z[c] * z[c])
+                    .sum::<f64>();
+            if normal {
+                for c in 0..3 {
+                    let f = q * LUMINANCE[c] * z[c];
+                    for (g, r) in gradient.iter_mut().zip(&rows[c]) {
+                        *g += f * r;
+                    }
+                }
+            }
+        }
+        acc.rows = rows;
+        let scale = lambda / reference;
+        let r = scale * (predicted - reference);
+        acc.cost += r * r;
+        if normal {
+            for g in &mut gradient {
+                *g *= scale;
+            }
+            acc.add_row(r, &gradient);
         }
     }
 }
 
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
 impl LeastSquares for Problem<'_> {
     fn examples(&self) -> usize {
-        self.inputs.len()
+        self.inputs.len() + self.members.len()
     }
 
     #[inline(always)]
     fn accumulate(&self, params: &[f64], i: usize, acc: &mut Accumulator, normal: bool) {
+        if i >= self.inputs.len() {
+            self.accumulate_irradiance(params, i - self.inputs.len(), acc, normal);
+            return;
+        }
         let w = self.weights[i];
         let sizes = &self.net.sizes;
         if normal {
@@ -326,7 +423,7 @@ pub fn train(config: &TrainConfig, set: &DataSet, validation: &[TestImage]) -> R
     for iteration in first_iteration..config.max_iterations {
         let moved = match config.optimizer {
             Optimizer::Lm => {
-                let problem = Problem::new(&net, set, &scaling);
+                let problem = Problem::new(&net, set, &scaling, config.irradiance_weight);
                 let state = lm_state.get_or_insert_with(|| Lm::new(&problem, net.params.clone()));
                 let moved = state.step(&problem);
                 net.params.clone_from(&state.params);
@@ -404,7 +501,7 @@ fn initial_net(config: &TrainConfig, sizes: &[usize], set: &DataSet, scaling: &S
     };
     let mut best: Option<(f64, Net)> = None;
     for mut net in candidates {
-        let problem = Problem::new(&net, &subsample, scaling);
+        let problem = Problem::new(&net, &subsample, scaling, config.irradiance_weight);
         let mut state = Lm::new(&problem, net.params.clone());
         for _ in 0..5 {
             if !state.step(&problem) {
