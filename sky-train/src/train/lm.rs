@@ -67,11 +67,16 @@ impl Accumulator {
 }
 
 /// Σ r² at `params`, and the normal equations when `normal`, over all examples, in parallel.
+///
+/// The examples are split into a fixed number of chunks whose sums are added in chunk order,
+/// so the result does not depend on the thread count or on scheduling: training is
+/// reproducible bit for bit.
 pub fn evaluate(problem: &impl LeastSquares, params: &[f64], normal: bool) -> Accumulator {
+    const CHUNKS: usize = 64;
     let p = params.len();
     let n = problem.examples();
-    let chunk = n.div_ceil(64).max(1);
-    (0..n.div_ceil(chunk))
+    let chunk = n.div_ceil(CHUNKS).max(1);
+    let parts: Vec<Accumulator> = (0..n.div_ceil(chunk))
         .into_par_iter()
         .map(|c| {
             let mut acc = Accumulator::new(p, normal);
@@ -85,7 +90,10 @@ pub fn evaluate(problem: &impl LeastSquares, params: &[f64], normal: bool) -> Ac
             );
             acc
         })
-        .reduce(|| Accumulator::new(p, normal), Accumulator::merge)
+        .collect();
+    parts
+        .into_iter()
+        .fold(Accumulator::new(p, normal), Accumulator::merge)
 }
 
 /// Solves (A + λ diag(A)) x = −g for symmetric positive (semi)definite A given as its upper
