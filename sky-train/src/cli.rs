@@ -33,8 +33,8 @@ pub enum Command {
     Render(RenderArgs),
     /// Evaluate a sky at view directions read from stdin (`view_zenith_deg,view_azimuth_deg`
     /// lines; a header line is allowed) and write CSV
-    /// `view_zenith_deg,view_azimuth_deg,Y,x,y,R,G,B` to stdout (Y in cd/m², RGB linear sRGB on
-    /// the same scale).
+    /// `view_zenith_deg,view_azimuth_deg,Y,x,y,R,G,B` to stdout (RGB linear sRGB and Y on the
+    /// same scale: cd/m² for preetham, O'Neil's relative units for aoas).
     Sample(SkyArgs),
     /// Print ns/direction of each evaluator over a hemisphere grid, single-threaded, with ratios.
     Bench(BenchArgs),
@@ -48,20 +48,20 @@ pub struct SkyArgs {
     /// The sky model.
     #[arg(long, value_enum, default_value_t = ModelKind::Preetham)]
     model: ModelKind,
-    /// Sun zenith angle in degrees (0 = overhead, 90 = on the horizon).
+    /// Sun zenith angle in degrees (0 = overhead, 90 = on the horizon). Required for preetham;
+    /// for aoas it replaces the style's day cycle.
     #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
-    sun_zenith: f64,
-    /// Sun azimuth in degrees, measured from +x towards +y (any finite value).
-    #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_negative_numbers = true, value_parser = finite)]
-    sun_azimuth: f64,
-    /// Atmospheric turbidity (preetham: 2 to 6).
-    #[arg(
-        long,
-        value_name = "T",
-        default_value_t = 3.0,
-        allow_negative_numbers = true
-    )]
-    turbidity: f64,
+    sun_zenith: Option<f64>,
+    /// Sun azimuth in degrees, measured from +x towards +y (any finite value; default 0).
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = finite)]
+    sun_azimuth: Option<f64>,
+    /// Atmospheric turbidity (preetham only: 2 to 6; default 3).
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    turbidity: Option<f64>,
+    /// The style (aoas only): a preset (physical, sunrise, sunset, grey, yellow, blue, coral,
+    /// smiley, heart, turbulent, ambiguous) or a style file in TOML. Default: physical.
+    #[arg(long, value_name = "PRESET|FILE")]
+    style: Option<String>,
 }
 
 impl SkyArgs {
@@ -70,6 +70,7 @@ impl SkyArgs {
             sun_zenith_deg: self.sun_zenith,
             sun_azimuth_deg: self.sun_azimuth,
             turbidity: self.turbidity,
+            style: self.style.clone(),
         }
     }
 }
@@ -276,9 +277,10 @@ fn gallery(args: &GalleryArgs, output: &mut dyn Write) -> Result<()> {
     for (row, turbidity) in TURBIDITIES.into_iter().enumerate() {
         for (col, sun_zenith) in SUN_ZENITHS.into_iter().enumerate() {
             let params = SkyParams {
-                sun_zenith_deg: sun_zenith,
-                sun_azimuth_deg: 90.0,
-                turbidity,
+                sun_zenith_deg: Some(sun_zenith),
+                sun_azimuth_deg: Some(90.0),
+                turbidity: Some(turbidity),
+                style: None,
             };
             let source = sources::build(ModelKind::Preetham, &params)?;
             let img = render::equirect(&*source, &grid);
@@ -315,3 +317,4 @@ fn gallery(args: &GalleryArgs, output: &mut dyn Write) -> Result<()> {
     }
     Ok(())
 }
+

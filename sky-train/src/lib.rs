@@ -9,3 +9,4 @@ pub mod image_io;
 pub mod reference;
 pub mod render;
 pub mod sources;
+pub mod style_file;

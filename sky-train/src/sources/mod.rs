@@ -3,6 +3,7 @@
 //! Each source evaluates whole slices of directions at once (the fast path of every model), in
 //! sky-core's conventions: +z up, luminance in cd/m², linear sRGB on the same scale.
 
+mod aoas;
 mod preetham;
 
 use std::fmt;
@@ -10,6 +11,7 @@ use std::fmt;
 use sky_core::Vec3;
 use sky_core::color::{self, Xyy};
 
+pub use aoas::Aoas;
 pub use preetham::Preetham;
 
 /// A sky model evaluated over many view directions.
@@ -36,6 +38,8 @@ pub trait SkySource: Send + Sync {
 pub enum ModelKind {
     /// The Perez/Preetham analytic sky (sky-core).
     Preetham,
+    /// The AOAS single-scattering skydome with a style (sky-core, seed 004).
+    Aoas,
 }
 
 impl ModelKind {
@@ -43,7 +47,7 @@ impl ModelKind {
     #[must_use]
     pub fn sun_zenith_range_deg(self) -> (f64, f64) {
         match self {
-            Self::Preetham => (0.0, 90.0),
+            Self::Preetham | Self::Aoas => (0.0, 90.0),
         }
     }
 }
@@ -52,19 +56,24 @@ impl fmt::Display for ModelKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
             Self::Preetham => "preetham",
+            Self::Aoas => "aoas",
         })
     }
 }
 
-/// The parameters that select one sky: the sun and the atmosphere.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The parameters that select one sky: the sun, the atmosphere, the style. Which ones a model
+/// needs, and which it refuses, is the model's business ([`build`]).
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct SkyParams {
-    /// Sun zenith angle in degrees.
-    pub sun_zenith_deg: f64,
-    /// Sun azimuth in degrees (sky-core's convention: from +x towards +y).
-    pub sun_azimuth_deg: f64,
-    /// Atmospheric turbidity.
-    pub turbidity: f64,
+    /// Sun zenith angle in degrees (required by preetham; for aoas it replaces the style's day
+    /// cycle).
+    pub sun_zenith_deg: Option<f64>,
+    /// Sun azimuth in degrees (sky-core's convention: from +x towards +y); 0 when absent.
+    pub sun_azimuth_deg: Option<f64>,
+    /// Atmospheric turbidity (preetham only; 3 when absent).
+    pub turbidity: Option<f64>,
+    /// A style preset name or a style file in TOML (aoas only; `physical` when absent).
+    pub style: Option<String>,
 }
 
 /// A parameter the user gave that the model rejects, phrased in the command line's terms.
@@ -86,58 +95,87 @@ impl std::error::Error for ParamError {}
 pub fn build(kind: ModelKind, params: &SkyParams) -> Result<Box<dyn SkySource>, ParamError> {
     match kind {
         ModelKind::Preetham => Ok(Box::new(Preetham::new(params)?)),
+        ModelKind::Aoas => Ok(Box::new(Aoas::new(params)?)),
     }
+}
+
+/// A `ParamError` for a parameter `kind` does not take.
+pub(crate) fn not_for(kind: ModelKind, flag: &str, models: &str) -> ParamError {
+    ParamError(format!(
+        "{flag} does not apply to --model {kind} (only to --model {models})"
+    ))
 }
 
 /// Rewrites a sky-core error in the command line's terms (argument names, degrees).
 pub(crate) fn param_error(kind: ModelKind, e: sky_core::SkyError) -> ParamError {
     use sky_core::SkyError as E;
     let (lo, hi) = kind.sun_zenith_range_deg();
-    let sun_zenith = |value: f32| {
-        format!(
-            "--sun-zenith {} deg is outside the valid range [{lo}, {hi}] deg for --model {kind}",
-            value.to_degrees()
-        )
-    };
     let msg = match e {
         E::OutOfRange {
             parameter: "sun zenith [rad]",
             value,
             ..
         }
-        | E::SunBelowHorizon { zenith: value } => sun_zenith(value),
-        E::NotFinite { parameter } => format!("{} must be a finite number", flag(parameter)),
+        | E::SunBelowHorizon { zenith: value } => format!(
+            "--sun-zenith {} deg is outside the valid range [{lo}, {hi}] deg for --model {kind}",
+            value.to_degrees()
+        ),
+        other => format!(
+            "{} for --model {kind}",
+            describe(other, |p| flag(p).to_owned(), " ")
+        ),
+    };
+    ParamError(msg)
+}
+
+/// Describes a sky-core error with each parameter named by `name` (given the parameter's name
+/// without its unit) and `separator` between the name and its value; angles in degrees.
+pub(crate) fn describe(
+    e: sky_core::SkyError,
+    name: impl Fn(&str) -> String,
+    separator: &str,
+) -> String {
+    use sky_core::SkyError as E;
+    // "clouds.radius [rad]" -> ("clouds.radius", "rad")
+    let split = |parameter: &'static str| match parameter.rsplit_once(" [") {
+        Some((base, unit)) => (base, unit.trim_end_matches(']')),
+        None => (parameter, ""),
+    };
+    match e {
+        E::NotFinite { parameter } => {
+            format!("{} must be a finite number", name(split(parameter).0))
+        }
         E::OutOfRange {
             parameter,
             value,
             min,
             max,
         } => {
-            let (value, min, max, unit) = if parameter.ends_with("[rad]") {
-                (
+            let (base, unit) = split(parameter);
+            let (value, min, max, unit) = match unit {
+                "rad" => (
                     value.to_degrees(),
                     min.to_degrees(),
                     max.to_degrees(),
-                    " deg",
-                )
-            } else {
-                (value, min, max, "")
+                    " deg".to_owned(),
+                ),
+                "" => (value, min, max, String::new()),
+                other => (value, min, max, format!(" {other}")),
             };
             format!(
-                "{} {value}{unit} is outside the valid range [{min}, {max}]{unit} for --model {kind}",
-                flag(parameter)
+                "{}{separator}{value}{unit} is outside the valid range [{min}, {max}]{unit}",
+                name(base)
             )
         }
         other => other.to_string(),
-    };
-    ParamError(msg)
+    }
 }
 
 fn flag(parameter: &str) -> &str {
     match parameter {
         "turbidity" => "--turbidity",
-        "sun zenith [rad]" => "--sun-zenith",
-        "sun azimuth [rad]" => "--sun-azimuth",
+        "sun zenith" => "--sun-zenith",
+        "sun azimuth" => "--sun-azimuth",
         other => other,
     }
 }
