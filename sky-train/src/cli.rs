@@ -10,7 +10,7 @@ use crate::{bench, render};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use sky_core::Vec3;
-use sky_core::color::Xyy;
+use sky_core::color::{self, Xyy};
 use sky_core::geom::{self, Equirect, Extent};
 
 /// The `sky-train` command line.
@@ -38,7 +38,8 @@ pub enum Command {
     Sample(SkyArgs),
     /// Print ns/direction of each evaluator over a hemisphere grid, single-threaded, with ratios.
     Bench(BenchArgs),
-    /// Render a set of default skies (sun positions x turbidities) to a folder: the main job.
+    /// Render a set of default skies (Preetham: sun positions x turbidities; AOAS: every style
+    /// preset) to a folder: the main job.
     Gallery(GalleryArgs),
 }
 
@@ -307,6 +308,9 @@ fn gallery(args: &GalleryArgs, output: &mut dyn Write) -> Result<()> {
     let sheet_path = args.out.join("preetham_sheet.png");
     image_io::write_png(&sheet_path, &sheet, 1.0)?;
     written.push(sheet_path);
+    let strip_path = args.out.join("aoas_presets.png");
+    image_io::write_png(&strip_path, &aoas_presets(args.width)?, 1.0)?;
+    written.push(strip_path);
     writeln!(
         output,
         "wrote {} files (rows: turbidity {TURBIDITIES:?}; columns: sun zenith {SUN_ZENITHS:?} deg):",
@@ -318,3 +322,78 @@ fn gallery(args: &GalleryArgs, output: &mut dyn Write) -> Result<()> {
     Ok(())
 }
 
+/// The AOAS presets laid out like the figures of seed 004, each through a perspective camera at
+/// its own (median) exposure, luminance compressed by Reinhard's L/(1 + L) so that the sun's
+/// glow keeps its hue: day cycle (Fig. 12: sunrise, noon, sunset), sky hue (Fig. 11: grey,
+/// yellow, blue, coral), sky pattern (Figs. 1, 9, 10: smiley, heart, turbulent, ambiguous).
+/// Tiles are `width` / 2 pixels wide, the horizon along their bottom; a camera faces the sun
+/// when it is low, and due north (where the presets draw their clouds) otherwise, except the
+/// last of the top row: noon again, facing the sun.
+fn aoas_presets(width: u32) -> Result<image_io::RgbImage> {
+    use sky_core::aoas::Preset as P;
+    // (preset, whether the camera faces the sun whatever its height)
+    const ROWS: [[(P, bool); 4]; 3] = [
+        [
+            (P::Sunrise, true),
+            (P::Physical, false),
+            (P::Sunset, true),
+            (P::Physical, true),
+        ],
+        [
+            (P::Grey, false),
+            (P::Yellow, false),
+            (P::Blue, false),
+            (P::Coral, false),
+        ],
+        [
+            (P::Smiley, false),
+            (P::Heart, false),
+            (P::Turbulent, false),
+            (P::Ambiguous, false),
+        ],
+    ];
+    let columns = ROWS[0].len();
+    let w = (width as usize / 2).max(8);
+    let h = w * 5 / 8;
+    let mut sheet = image_io::RgbImage {
+        width: w * columns,
+        height: h * ROWS.len(),
+        pixels: vec![Vec3::ZERO; w * h * columns * ROWS.len()],
+    };
+    for (row, presets) in ROWS.iter().enumerate() {
+        for (col, &(preset, face_sun)) in presets.iter().enumerate() {
+            let params = SkyParams {
+                style: Some(preset.name().into()),
+                ..SkyParams::default()
+            };
+            let source = sources::Aoas::new(&params)?;
+            let sun = source.sky.sun();
+            let low = face_sun || sun.zenith() > 75f32.to_radians();
+            let horizontal_fov = 100f32.to_radians();
+            #[allow(clippy::cast_precision_loss)] // small sizes
+            let half_vertical = ((0.5 * horizontal_fov).tan() * h as f32 / w as f32).atan();
+            let camera = render::Camera {
+                azimuth: if low {
+                    sun.azimuth()
+                } else {
+                    core::f32::consts::FRAC_PI_2
+                },
+                elevation: half_vertical - 1f32.to_radians(),
+                horizontal_fov,
+            };
+            let img = render::perspective(&source, &camera, w, h);
+            let scale = render::median_exposure(&img, 0.8);
+            for y in 0..h {
+                let dst = (row * h + y) * sheet.width + col * w;
+                for (d, s) in sheet.pixels[dst..dst + w]
+                    .iter_mut()
+                    .zip(&img.pixels[y * w..])
+                {
+                    let c = *s * scale;
+                    *d = c / (1.0 + color::luminance(c));
+                }
+            }
+        }
+    }
+    Ok(sheet)
+}
