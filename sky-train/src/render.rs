@@ -12,12 +12,26 @@ use crate::sources::SkySource;
 #[must_use]
 pub fn equirect(source: &dyn SkySource, grid: &Equirect) -> RgbImage {
     let (width, height) = (grid.width() as usize, grid.height() as usize);
+    rows(source, width, height, |i, j| {
+        let to_u32 = |k: usize| u32::try_from(k).unwrap_or(u32::MAX);
+        grid.direction(to_u32(i), to_u32(j))
+    })
+}
+
+/// Renders `source` into a `width` × `height` image whose pixel (`i`, `j`) looks along
+/// `direction(i, j)`, rows in parallel, each row one batch.
+fn rows(
+    source: &dyn SkySource,
+    width: usize,
+    height: usize,
+    direction: impl Fn(usize, usize) -> Vec3 + Sync,
+) -> RgbImage {
     let mut pixels = vec![Vec3::ZERO; width * height];
     pixels
-        .par_chunks_mut(width)
-        .zip(0..grid.height())
-        .for_each(|(row, j)| {
-            let dirs: Vec<Vec3> = (0..grid.width()).map(|i| grid.direction(i, j)).collect();
+        .par_chunks_mut(width.max(1))
+        .enumerate()
+        .for_each(|(j, row)| {
+            let dirs: Vec<Vec3> = (0..width).map(|i| direction(i, j)).collect();
             source.rgb_batch(&dirs, row);
         });
     RgbImage {
@@ -89,21 +103,9 @@ pub fn perspective(
     width: usize,
     height: usize,
 ) -> RgbImage {
-    let mut pixels = vec![Vec3::ZERO; width * height];
-    pixels
-        .par_chunks_mut(width.max(1))
-        .enumerate()
-        .for_each(|(j, row)| {
-            let dirs: Vec<Vec3> = (0..width)
-                .map(|i| camera.direction(i, j, width, height))
-                .collect();
-            source.rgb_batch(&dirs, row);
-        });
-    RgbImage {
-        width,
-        height,
-        pixels,
-    }
+    rows(source, width, height, |i, j| {
+        camera.direction(i, j, width, height)
+    })
 }
 
 /// The factor that maps the median luminance of the image's non-black pixels to `target`: an

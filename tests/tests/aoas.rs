@@ -7,7 +7,6 @@
 use std::f32::consts::{FRAC_PI_2, PI};
 
 use proptest::prelude::*;
-use proptest::test_runner::FileFailurePersistence;
 use sky_core::aoas::{
     Ambiguity, AoasSky, CloudNoise, CloudShapes, DayCycle, Preset, Scattering, Style,
 };
@@ -102,16 +101,6 @@ fn hemisphere(sun_azimuth: f32) -> Vec<Vec3> {
         }
     }
     dirs
-}
-
-fn proptest_config(cases: u32) -> ProptestConfig {
-    ProptestConfig {
-        cases,
-        failure_persistence: Some(Box::new(FileFailurePersistence::WithSource(
-            "proptest-regressions",
-        ))),
-        ..ProptestConfig::default()
-    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -598,7 +587,7 @@ fn direction_strategy() -> impl Strategy<Value = Vec3> {
 }
 
 proptest! {
-    #![proptest_config(proptest_config(300))]
+    #![proptest_config(ProptestConfig::with_cases(300))]
 
     /// Any valid sky, any direction (even NaN, zero or infinite): finite, non-negative, and the
     /// batch path equals the one-direction path bit for bit.

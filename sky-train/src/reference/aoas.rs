@@ -74,18 +74,22 @@ fn optical_depth_to_space(p: V3, d: V3, intervals: usize) -> f64 {
     }
     let length = exit_distance(p, d, OUTER_RADIUS);
     let h = length / intervals as f64;
-    let mut sum = 0.0;
-    for j in 0..=intervals {
-        let w = if j == 0 || j == intervals {
-            1.0
-        } else if j % 2 == 1 {
-            4.0
-        } else {
-            2.0
-        };
-        sum += w * density(add_scaled(p, d, h * j as f64));
-    }
+    let sum: f64 = (0..=intervals)
+        .map(|j| simpson_weight(j, intervals) * density(add_scaled(p, d, h * j as f64)))
+        .sum();
     sum * h / 3.0
+}
+
+/// The weight of point `j` of `intervals` (even) in the composite Simpson rule, before the
+/// factor h/3: 1, 4, 2, 4, …, 2, 4, 1.
+fn simpson_weight(j: usize, intervals: usize) -> f64 {
+    if j == 0 || j == intervals {
+        1.0
+    } else if j % 2 == 1 {
+        4.0
+    } else {
+        2.0
+    }
 }
 
 /// O'Neil's fitted optical depth from the ground to space at angle θ from the vertical, in
@@ -223,13 +227,7 @@ impl SingleScattering {
         for j in 0..=n {
             let p = add_scaled(pv, d, h * j as f64);
             let tau = to_viewer[j] + optical_depth_to_space(p, self.sun, q.light);
-            let w = if j == 0 || j == n {
-                1.0
-            } else if j % 2 == 1 {
-                4.0
-            } else {
-                2.0
-            };
+            let w = simpson_weight(j, n);
             for c in 0..3 {
                 integral[c] += w * rho[j] * (-beta[c] * tau).exp();
             }
