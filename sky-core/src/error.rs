@@ -30,6 +30,16 @@ pub enum SkyError {
         /// The sun's zenith angle in radians (greater than π/2).
         zenith: f32,
     },
+    /// A fixed-capacity collection (no allocation) has no room for what was added; nothing was
+    /// added.
+    CapacityExceeded {
+        /// What the collection holds.
+        collection: &'static str,
+        /// How many items it holds at most.
+        capacity: usize,
+        /// How many items it would have needed.
+        needed: usize,
+    },
 }
 
 impl fmt::Display for SkyError {
@@ -48,6 +58,14 @@ impl fmt::Display for SkyError {
             Self::SunBelowHorizon { zenith } => write!(
                 f,
                 "the sun is below the horizon (zenith {zenith} rad > pi/2), where this model is undefined"
+            ),
+            Self::CapacityExceeded {
+                collection,
+                capacity,
+                needed,
+            } => write!(
+                f,
+                "{collection}: {needed} needed, but at most {capacity} fit (fixed capacity, no allocation)"
             ),
         }
     }

@@ -31,7 +31,8 @@
 //!   [`geom::direction`]. Only azimuth *differences* matter to the sky models.
 //! * **Directions** are [`glam::Vec3`] unit vectors pointing *from* the viewer *towards* the sky.
 //! * **Units**: luminance `Y` in cd/m²; linear sRGB triples are on the same scale (their `Y` is the
-//!   luminance). Chromaticity `x, y` is CIE 1931.
+//!   luminance). Chromaticity `x, y` is CIE 1931. The AOAS sky is the exception: its linear RGB
+//!   is in O'Neil's relative units, proportional to the sun's intensity parameter.
 //! * **Below the horizon** the sky models return a documented, finite value (see each model).
 //!
 //! # Models
@@ -40,13 +41,23 @@
 //! |---|---|---|
 //! | Perez all-weather luminance distribution with Preetham's coefficients | [`PreethamSky`] | Perez et al. 1993; Preetham, Shirley, Smits 1999 (seed 002, eqs. 1-19) |
 //! | neural sky: a 6-H-3 network (492 bytes of weights at H = 12) | [`NeuralSky`] | Satilmis et al., *A Machine Learning Driven Sky Model* (seed 000, eqs. 4-10) |
+//! | single-scattering skydome with aesthetic principles (AOAS) | [`AoasSky`] | seed 004, eqs. 1-8; O'Neil, "Accurate Atmospheric Scattering", GPU Gems 2 ch. 16 |
+//!
+//! ```
+//! use sky_core::aoas::{AoasSky, Preset, Scattering, Style};
+//!
+//! let sky = AoasSky::new(&Scattering::default(), &Style::preset(Preset::Coral))?;
+//! let rgb = sky.rgb(sky_core::Vec3::Z); // linear RGB, O'Neil's relative units
+//! assert!(rgb.x > rgb.y && rgb.y > rgb.z); // a coral zenith
+//! # Ok::<(), sky_core::SkyError>(())
+//! ```
 //!
 //! # Features
 //!
 //! `sky-core` has no default features. Math goes through one private front: [`libm`] for what
-//! is computed once per sky, and branch-free polynomial kernels (exp, atan2, 1/√x; errors of a
-//! few ulp, stated and tested) for what is computed per direction, so that loops over
-//! directions vectorise. Results are identical, bit for bit, on every target (the firmware
+//! is computed once per sky, and branch-free polynomial kernels (exp, atan2, 1/√x, √x; errors
+//! of a few ulp, stated and tested) for what is computed per direction, so that loops over
+//! directions vectorise. Fixed-capacity collections (AOAS cloud shapes) are [`heapless`]'s. Results are identical, bit for bit, on every target (the firmware
 //! example checks this on a Cortex-M4F).
 //!
 //! # Batch evaluation
@@ -60,6 +71,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod aoas;
 pub mod color;
 mod error;
 pub mod geom;
@@ -67,6 +79,7 @@ mod math;
 pub mod neural;
 pub mod preetham;
 
+pub use aoas::AoasSky;
 pub use error::SkyError;
 pub use geom::Sun;
 pub use glam::Vec3;

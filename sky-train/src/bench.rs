@@ -5,6 +5,7 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use anyhow::Result;
+use sky_core::aoas::{AoasSky, Preset, Scattering, Style};
 use sky_core::color::{self, Xyy};
 use sky_core::geom::{Equirect, Extent};
 use sky_core::neural::{NeuralSky, pretrained};
@@ -12,16 +13,17 @@ use sky_core::preetham::PerezCoefficients;
 use sky_core::{PreethamSky, Sun, Vec3};
 
 use crate::dispatch;
+use crate::reference::aoas::{Quadrature, SingleScattering};
 
 /// One measured evaluator.
 #[derive(Debug, Clone)]
 pub struct Measurement {
-    /// The group it is compared within: ratios are against the group's first measurement.
-    pub group: &'static str,
     /// What was measured.
     pub name: String,
     /// Median nanoseconds per direction.
     pub ns_per_direction: f64,
+    /// The index (in the same run's results) of the peer its ratio is taken against.
+    pub peer: usize,
 }
 
 /// The directions of a `width` × `height` upper-hemisphere grid (seed 000 §IV-C times 1024 × 512
@@ -60,52 +62,73 @@ fn per_direction(t: Duration, n: usize) -> f64 {
 /// # Errors
 /// Never in practice: the benchmark's sky parameters are valid constants.
 pub fn run(dirs: &[Vec3], runs: usize) -> Result<Vec<Measurement>> {
-    let sky = PreethamSky::new(Sun::new(0.9, 0.3)?, 3.0)?;
-    let peer = Straightforward::new(&sky);
     let mut results = Vec::new();
-    // Times `eval` filling `out` from `dirs` and records it under `name`.
-    let mut group = "preetham";
-    let mut measure =
-        |group: &'static str, name: String, eval: &mut dyn FnMut(&[Vec3], &mut [Vec3])| {
-            let mut out = vec![Vec3::ZERO; dirs.len()];
-            let t = median_time(runs, || {
-                eval(black_box(dirs), &mut out);
-                black_box(&out);
-            });
-            results.push(Measurement {
-                group,
-                name,
-                ns_per_direction: per_direction(t, dirs.len()),
-            });
-        };
-    measure(
-        group,
-        "preetham, straightforward scalar peer".into(),
+    preetham(dirs, runs, &mut results)?;
+    neural(dirs, runs, &mut results)?;
+    aoas(dirs, runs, &mut results)?;
+    Ok(results)
+}
+
+/// Times `eval` filling an output from `dirs` (every `stride`-th direction) and records it under
+/// `name` with the ratio against `peer` (an index into `results`; `None`: itself).
+fn measure(
+    results: &mut Vec<Measurement>,
+    dirs: &[Vec3],
+    stride: usize,
+    runs: usize,
+    name: String,
+    peer: Option<usize>,
+    eval: &mut dyn FnMut(&[Vec3], &mut [Vec3]),
+) -> usize {
+    let dirs: Vec<Vec3> = dirs.iter().step_by(stride.max(1)).copied().collect();
+    let mut out = vec![Vec3::ZERO; dirs.len()];
+    let t = median_time(runs, || {
+        eval(black_box(&dirs), &mut out);
+        black_box(&out);
+    });
+    let index = results.len();
+    results.push(Measurement {
+        name,
+        ns_per_direction: per_direction(t, dirs.len()),
+        peer: peer.unwrap_or(index),
+    });
+    index
+}
+
+fn preetham(dirs: &[Vec3], runs: usize, results: &mut Vec<Measurement>) -> Result<()> {
+    let sky = PreethamSky::new(Sun::new(0.9, 0.3)?, 3.0)?;
+    let straightforward = Straightforward::new(&sky);
+    let mut m = |name: &str, peer, eval: &mut dyn FnMut(&[Vec3], &mut [Vec3])| {
+        measure(results, dirs, 1, runs, name.to_owned(), peer, eval)
+    };
+    let peer = m(
+        "preetham, straightforward scalar peer",
+        None,
         &mut |d, o| {
             for (o, d) in o.iter_mut().zip(d) {
-                *o = peer.rgb(*d);
+                *o = straightforward.rgb(*d);
             }
         },
     );
-    measure(
-        group,
-        "preetham rgb, one direction a call".into(),
+    m(
+        "preetham rgb, one direction a call",
+        Some(peer),
         &mut |d, o| {
             for (o, d) in o.iter_mut().zip(d) {
                 *o = sky.rgb(black_box(*d));
             }
         },
     );
-    measure(
-        group,
-        "preetham rgb_batch (baseline SIMD)".into(),
+    m(
+        "preetham rgb_batch (baseline SIMD)",
+        Some(peer),
         &mut |d, o| {
             sky.rgb_batch(d, o);
         },
     );
-    measure(
-        group,
-        format!("preetham rgb_batch ({})", dispatch::describe()),
+    m(
+        &format!("preetham rgb_batch ({})", dispatch::describe()),
+        Some(peer),
         &mut |d, o| {
             dispatch::fastest(
                 #[inline(always)]
@@ -113,51 +136,174 @@ pub fn run(dirs: &[Vec3], runs: usize) -> Result<Vec<Measurement>> {
             );
         },
     );
+    Ok(())
+}
 
-    group = "neural";
-    let hosek = crate::sources::Hosek::new(&crate::sources::SkyParams {
-        sun_zenith_deg: f64::from(0.9f32.to_degrees()),
-        sun_azimuth_deg: 17.0,
-        turbidity: 3.0,
-    })
+/// The neural sky against the Hosek-Wilkie sky of the `hw-skymodel` crate (seed 000 §IV-C
+/// compares it with Hosek and Preetham in the same way).
+fn neural(dirs: &[Vec3], runs: usize, results: &mut Vec<Measurement>) -> Result<()> {
+    let hosek = crate::sources::Hosek::new(&crate::sources::SkyParams::sun_and_turbidity(
+        f64::from(0.9f32.to_degrees()),
+        17.0,
+        3.0,
+    ))
     .map_err(|e| anyhow::anyhow!("{e}"))?;
-    measure(
-        group,
-        "hosek-wilkie (hw-skymodel crate) peer".into(),
+    let sky = NeuralSky::new(&pretrained::PREETHAM, Sun::new(0.9, 0.3)?, 3.0)?;
+    let mut m = |name: &str, peer, eval: &mut dyn FnMut(&[Vec3], &mut [Vec3])| {
+        measure(results, dirs, 1, runs, name.to_owned(), peer, eval)
+    };
+    let peer = m(
+        "hosek-wilkie (hw-skymodel crate) peer",
+        None,
         &mut |d, o| {
             for (o, d) in o.iter_mut().zip(d) {
                 *o = hosek.rgb(*d);
             }
         },
     );
-    let neural = NeuralSky::new(&pretrained::PREETHAM, Sun::new(0.9, 0.3)?, 3.0)?;
-    measure(
-        group,
-        "neural 6-12-3 rgb, one direction a call".into(),
+    m(
+        "neural 6-12-3 rgb, one direction a call",
+        Some(peer),
         &mut |d, o| {
             for (o, d) in o.iter_mut().zip(d) {
-                *o = neural.rgb(black_box(*d));
+                *o = sky.rgb(black_box(*d));
             }
         },
     );
-    measure(
-        group,
-        "neural 6-12-3 rgb_batch (baseline SIMD)".into(),
-        &mut |d, o| {
-            neural.rgb_batch(d, o);
-        },
+    m(
+        "neural 6-12-3 rgb_batch (baseline SIMD)",
+        Some(peer),
+        &mut |d, o| sky.rgb_batch(d, o),
     );
-    measure(
-        group,
-        format!("neural 6-12-3 rgb_batch ({})", dispatch::describe()),
+    m(
+        &format!("neural 6-12-3 rgb_batch ({})", dispatch::describe()),
+        Some(peer),
         &mut |d, o| {
             dispatch::fastest(
                 #[inline(always)]
-                || neural.rgb_batch(d, o),
+                || sky.rgb_batch(d, o),
             );
         },
     );
-    Ok(results)
+    Ok(())
+}
+
+/// AOAS: the f64 references as peers of the physical preset, and the physical preset as the
+/// peer of each style principle turned on alone (the extra cost of the principle).
+fn aoas(dirs: &[Vec3], runs: usize, results: &mut Vec<Measurement>) -> Result<()> {
+    let scattering = Scattering::default();
+    let physical = AoasSky::new(&scattering, &Style::preset(Preset::Physical))?;
+    let samples = scattering.samples;
+    let sun = physical.sun().direction();
+    let reference = SingleScattering::o_neil_defaults([sun.x, sun.y, sun.z].map(f64::from));
+    let to_f32 = |c: [f64; 3]| {
+        #[allow(clippy::cast_possible_truncation)]
+        Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32)
+    };
+    let exact = measure(
+        results,
+        dirs,
+        256,
+        runs.min(3),
+        "aoas exact integral, f64 (1/256 of dirs)".into(),
+        None,
+        &mut |d, o| {
+            for (o, d) in o.iter_mut().zip(d) {
+                let v = [d.x, d.y, d.z].map(f64::from);
+                *o = to_f32(reference.exact(v, Quadrature::FINE));
+            }
+        },
+    );
+    let o_neil = measure(
+        results,
+        dirs,
+        16,
+        runs,
+        format!("aoas O'Neil {samples} samples, f64 scalar peer"),
+        Some(exact),
+        &mut |d, o| {
+            for (o, d) in o.iter_mut().zip(d) {
+                let v = [d.x, d.y, d.z].map(f64::from);
+                *o = to_f32(reference.o_neil(v, samples as usize));
+            }
+        },
+    );
+    let mut m = |name: String, peer, eval: &mut dyn FnMut(&[Vec3], &mut [Vec3])| {
+        measure(results, dirs, 1, runs, name, Some(peer), eval)
+    };
+    m(
+        "aoas physical rgb, one direction a call".into(),
+        o_neil,
+        &mut |d, o| {
+            for (o, d) in o.iter_mut().zip(d) {
+                *o = physical.rgb(black_box(*d));
+            }
+        },
+    );
+    m(
+        "aoas physical rgb_batch (baseline SIMD)".into(),
+        o_neil,
+        &mut |d, o| physical.rgb_batch(d, o),
+    );
+    let lanes = dispatch::describe();
+    let base = m(
+        format!("aoas physical rgb_batch ({lanes})"),
+        o_neil,
+        &mut |d, o| {
+            dispatch::fastest(
+                #[inline(always)]
+                || physical.rgb_batch(d, o),
+            );
+        },
+    );
+    let physical_style = Style::preset(Preset::Physical);
+    let principles = [
+        (
+            "ambiguity",
+            Style {
+                ambiguity: Preset::Ambiguous.style().ambiguity,
+                ..physical_style.clone()
+            },
+        ),
+        (
+            "cloud noise",
+            Style {
+                cloud_noise: Preset::Turbulent.style().cloud_noise,
+                ..physical_style.clone()
+            },
+        ),
+        (
+            "cloud shapes (smiley)",
+            Style {
+                cloud_shapes: Preset::Smiley.style().cloud_shapes,
+                ..physical_style.clone()
+            },
+        ),
+        (
+            "sky hue (coral)",
+            Style {
+                sky_hue: Preset::Coral.style().sky_hue,
+                ..physical_style.clone()
+            },
+        ),
+        (
+            "day cycle (sunset)",
+            Style {
+                day_cycle: Preset::Sunset.style().day_cycle,
+                ..physical_style.clone()
+            },
+        ),
+    ];
+    for (what, style) in principles {
+        let sky = AoasSky::new(&scattering, &style)?;
+        m(format!("aoas + {what} ({lanes})"), base, &mut |d, o| {
+            dispatch::fastest(
+                #[inline(always)]
+                || sky.rgb_batch(d, o),
+            );
+        });
+    }
+    Ok(())
 }
 
 /// The peer: eqs. 10-12 as one would first write them: the zenith normalisation Z / F(0, θs)
@@ -202,20 +348,25 @@ impl Straightforward {
     }
 }
 
-/// Formats measurements as aligned lines, each with its speed ratio to its group's first.
+/// Formats measurements as aligned lines, each with its ratio to its peer (and, for a style
+/// principle, its extra nanoseconds over the physical sky).
 #[must_use]
 pub fn report(results: &[Measurement], width: u32, height: u32) -> String {
     let mut s = format!("{width}x{height} directions, single thread, median of runs\n");
     for m in results {
-        let Some(base) = results.iter().find(|b| b.group == m.group) else {
-            continue;
+        let peer = results.get(m.peer).unwrap_or(m);
+        // A style principle's line: its extra cost over the physical sky.
+        let extra = if m.name.starts_with("aoas +") {
+            format!(" ({:+.2} ns)", m.ns_per_direction - peer.ns_per_direction)
+        } else {
+            String::new()
         };
         s += &format!(
-            "{:<44} {:>8.2} ns/direction  {:>6.2}x vs {}\n",
+            "{:<48} {:>10.2} ns/direction  {:>7.2}x vs {}{extra}\n",
             m.name,
             m.ns_per_direction,
-            base.ns_per_direction / m.ns_per_direction,
-            base.name,
+            peer.ns_per_direction / m.ns_per_direction,
+            peer.name,
         );
     }
     s

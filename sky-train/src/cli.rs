@@ -11,7 +11,7 @@ use crate::{bench, export, render};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use sky_core::Vec3;
-use sky_core::color::Xyy;
+use sky_core::color::{self, Xyy};
 use sky_core::geom::{self, Equirect, Extent};
 
 /// The `sky-train` command line.
@@ -34,12 +34,13 @@ pub enum Command {
     Render(RenderArgs),
     /// Evaluate a sky at view directions read from stdin (`view_zenith_deg,view_azimuth_deg`
     /// lines; a header line is allowed) and write CSV
-    /// `view_zenith_deg,view_azimuth_deg,Y,x,y,R,G,B` to stdout (Y in cd/m², RGB linear sRGB on
-    /// the same scale).
+    /// `view_zenith_deg,view_azimuth_deg,Y,x,y,R,G,B` to stdout (RGB linear sRGB and Y on the
+    /// same scale: cd/m² for preetham, O'Neil's relative units for aoas).
     Sample(SkyArgs),
     /// Print ns/direction of each evaluator over a hemisphere grid, single-threaded, with ratios.
     Bench(BenchArgs),
-    /// Render a set of default skies (sun positions x turbidities) to a folder.
+    /// Render a set of default skies (Preetham: sun positions x turbidities; AOAS: every style
+    /// preset) to a folder (the first part of `showcase`).
     Gallery(GalleryArgs),
     /// The main job: the gallery, then a Preetham neural sky trained from scratch and compared
     /// with seed 000's Tables 1-2, weights and images written to the folder.
@@ -172,23 +173,24 @@ pub struct SkyArgs {
     /// The sky model.
     #[arg(long, value_enum, default_value_t = ModelKind::Preetham)]
     model: ModelKind,
-    /// Sun zenith angle in degrees (0 = overhead, 90 = on the horizon).
+    /// Sun zenith angle in degrees (0 = overhead, 90 = on the horizon). Required for preetham;
+    /// for aoas it replaces the style's day cycle.
     #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
-    sun_zenith: f64,
-    /// Sun azimuth in degrees, measured from +x towards +y (any finite value).
-    #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_negative_numbers = true, value_parser = finite)]
-    sun_azimuth: f64,
-    /// Atmospheric turbidity (preetham: 2 to 6; hosek: 1 to 10; neural: the trained range).
-    #[arg(
-        long,
-        value_name = "T",
-        default_value_t = 3.0,
-        allow_negative_numbers = true
-    )]
-    turbidity: f64,
+    sun_zenith: Option<f64>,
+    /// Sun azimuth in degrees, measured from +x towards +y (any finite value; default 0).
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = finite)]
+    sun_azimuth: Option<f64>,
+    /// Atmospheric turbidity (preetham: 2 to 6; hosek: 1 to 10; neural: the trained range;
+    /// default 3; not for aoas).
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    turbidity: Option<f64>,
     /// Weight file of `--model neural` (written by `sky-train train`).
     #[arg(long, value_name = "FILE")]
     weights: Option<PathBuf>,
+    /// The style (aoas only): a preset (physical, sunrise, sunset, grey, yellow, blue, coral,
+    /// smiley, heart, turbulent, ambiguous) or a style file in TOML. Default: physical.
+    #[arg(long, value_name = "PRESET|FILE")]
+    style: Option<String>,
 }
 
 impl SkyArgs {
@@ -217,6 +219,7 @@ impl SkyArgs {
             sun_zenith_deg: self.sun_zenith,
             sun_azimuth_deg: self.sun_azimuth,
             turbidity: self.turbidity,
+            style: self.style.clone(),
         }
     }
 }
@@ -456,9 +459,10 @@ fn gallery(args: &GalleryArgs, output: &mut dyn Write) -> Result<()> {
     for (row, turbidity) in TURBIDITIES.into_iter().enumerate() {
         for (col, sun_zenith) in SUN_ZENITHS.into_iter().enumerate() {
             let params = SkyParams {
-                sun_zenith_deg: sun_zenith,
-                sun_azimuth_deg: 90.0,
-                turbidity,
+                sun_zenith_deg: Some(sun_zenith),
+                sun_azimuth_deg: Some(90.0),
+                turbidity: Some(turbidity),
+                style: None,
             };
             let source = sources::build(ModelKind::Preetham, &params)?;
             let img = render::equirect(&*source, &grid);
@@ -485,6 +489,9 @@ fn gallery(args: &GalleryArgs, output: &mut dyn Write) -> Result<()> {
     let sheet_path = args.out.join("preetham_sheet.png");
     image_io::write_png(&sheet_path, &sheet, 1.0)?;
     written.push(sheet_path);
+    let strip_path = args.out.join("aoas_presets.png");
+    image_io::write_png(&strip_path, &aoas_presets(args.width)?, 1.0)?;
+    written.push(strip_path);
     writeln!(
         output,
         "wrote {} files (rows: turbidity {TURBIDITIES:?}; columns: sun zenith {SUN_ZENITHS:?} deg):",
@@ -586,11 +593,7 @@ fn eval_command(args: &EvalArgs, output: &mut dyn Write) -> Result<()> {
         ModelKind::Hosek => ("fig7", 0.3 * 180.0, 2.0),
         _ => ("fig6", 0.48 * 180.0, 4.0),
     };
-    let params = SkyParams {
-        sun_zenith_deg: zenith,
-        sun_azimuth_deg: 90.0,
-        turbidity,
-    };
+    let params = SkyParams::sun_and_turbidity(zenith, 90.0, turbidity);
     let path = args.out.join(format!(
         "{figure}_{reference}_reference_network_difference.png"
     ));
@@ -642,15 +645,87 @@ fn showcase(args: &ShowcaseArgs, output: &mut dyn Write) -> Result<()> {
     };
     let evaluation = crate::eval::evaluate(model, &network)?;
     write!(output, "{}", evaluation.report())?;
-    let params = SkyParams {
-        sun_zenith_deg: 0.48 * 180.0,
-        sun_azimuth_deg: 90.0,
-        turbidity: 4.0,
-    };
+    let params = SkyParams::sun_and_turbidity(0.48 * 180.0, 90.0, 4.0);
     let path = args
         .out
         .join("fig6_preetham_reference_network_difference.png");
     crate::eval::write_comparison(&path, model, &*network(&params)?, &params, 512)?;
     writeln!(output, "wrote {}", path.display())?;
     Ok(())
+}
+
+/// The AOAS presets laid out like the figures of seed 004, each through a perspective camera at
+/// its own (median) exposure, luminance compressed by Reinhard's L/(1 + L) so that the sun's
+/// glow keeps its hue: day cycle (Fig. 12: sunrise, noon, sunset), sky hue (Fig. 11: grey,
+/// yellow, blue, coral), sky pattern (Figs. 1, 9, 10: smiley, heart, turbulent, ambiguous).
+/// Tiles are `width` / 2 pixels wide, the horizon along their bottom; a camera faces the sun
+/// when it is low, and due north (where the presets draw their clouds) otherwise, except the
+/// last of the top row: noon again, facing the sun.
+fn aoas_presets(width: u32) -> Result<image_io::RgbImage> {
+    use sky_core::aoas::Preset as P;
+    // (preset, whether the camera faces the sun whatever its height)
+    const ROWS: [[(P, bool); 4]; 3] = [
+        [
+            (P::Sunrise, true),
+            (P::Physical, false),
+            (P::Sunset, true),
+            (P::Physical, true),
+        ],
+        [
+            (P::Grey, false),
+            (P::Yellow, false),
+            (P::Blue, false),
+            (P::Coral, false),
+        ],
+        [
+            (P::Smiley, false),
+            (P::Heart, false),
+            (P::Turbulent, false),
+            (P::Ambiguous, false),
+        ],
+    ];
+    let columns = ROWS[0].len();
+    let w = (width as usize / 2).max(8);
+    let h = w * 5 / 8;
+    let mut sheet = image_io::RgbImage {
+        width: w * columns,
+        height: h * ROWS.len(),
+        pixels: vec![Vec3::ZERO; w * h * columns * ROWS.len()],
+    };
+    for (row, presets) in ROWS.iter().enumerate() {
+        for (col, &(preset, face_sun)) in presets.iter().enumerate() {
+            let params = SkyParams {
+                style: Some(preset.name().into()),
+                ..SkyParams::default()
+            };
+            let source = sources::Aoas::new(&params)?;
+            let sun = source.sky.sun();
+            let low = face_sun || sun.zenith() > 75f32.to_radians();
+            let horizontal_fov = 100f32.to_radians();
+            #[allow(clippy::cast_precision_loss)] // small sizes
+            let half_vertical = ((0.5 * horizontal_fov).tan() * h as f32 / w as f32).atan();
+            let camera = render::Camera {
+                azimuth: if low {
+                    sun.azimuth()
+                } else {
+                    core::f32::consts::FRAC_PI_2
+                },
+                elevation: half_vertical - 1f32.to_radians(),
+                horizontal_fov,
+            };
+            let img = render::perspective(&source, &camera, w, h);
+            let scale = render::median_exposure(&img, 0.8);
+            for y in 0..h {
+                let dst = (row * h + y) * sheet.width + col * w;
+                for (d, s) in sheet.pixels[dst..dst + w]
+                    .iter_mut()
+                    .zip(&img.pixels[y * w..])
+                {
+                    let c = *s * scale;
+                    *d = c / (1.0 + color::luminance(c));
+                }
+            }
+        }
+    }
+    Ok(sheet)
 }

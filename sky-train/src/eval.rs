@@ -157,11 +157,11 @@ pub fn evaluate(
 }
 
 fn params_of(case: SkyCase) -> SkyParams {
-    SkyParams {
-        sun_zenith_deg: case.sun_zenith.to_degrees(),
-        sun_azimuth_deg: TEST_SUN_AZIMUTH.to_degrees(),
-        turbidity: case.turbidity,
-    }
+    SkyParams::sun_and_turbidity(
+        case.sun_zenith.to_degrees(),
+        TEST_SUN_AZIMUTH.to_degrees(),
+        case.turbidity,
+    )
 }
 
 /// Writes reference | network | 10 × |difference| side by side, like seed 000's Figs. 6-7, for

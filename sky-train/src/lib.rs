@@ -1,6 +1,6 @@
 //! The host side of the sky library: every sky model behind one [`sources::SkySource`] trait,
-//! rendering to OpenEXR and PNG, sampling to CSV, and benchmarks. The `sky-train` binary is a
-//! thin command-line front over this library.
+//! rendering to OpenEXR and PNG, sampling to CSV, benchmarks, and independent f64 references
+//! ([`reference`](mod@reference)). The `sky-train` binary is a thin command-line front over this library.
 
 pub mod bench;
 pub mod cli;
@@ -9,6 +9,8 @@ pub mod eval;
 pub mod export;
 pub mod fuzz;
 pub mod image_io;
+pub mod reference;
 pub mod render;
 pub mod sources;
+pub mod style_file;
 pub mod train;

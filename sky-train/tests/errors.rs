@@ -186,3 +186,91 @@ fn neural_model_errors_name_the_argument() {
         &["--turbidity", "[1, 10]"],
     );
 }
+
+#[test]
+fn bad_aoas_arguments_name_the_argument_and_range() {
+    fails(
+        &["sample", "--model", "aoas", "--style", "mauve"],
+        &["--style", "mauve", "physical", "coral", ".toml"],
+    );
+    fails(
+        &["sample", "--model", "aoas", "--turbidity", "3"],
+        &["--turbidity", "--model preetham"],
+    );
+    fails(
+        &[
+            "sample",
+            "--model",
+            "preetham",
+            "--sun-zenith",
+            "30",
+            "--style",
+            "coral",
+        ],
+        &["--style", "--model aoas"],
+    );
+    fails(
+        &["sample", "--model", "aoas", "--sun-zenith", "95"],
+        &["--sun-zenith", "95", "[0, 90]", "aoas"],
+    );
+    fails(
+        &["sample", "--model", "aoas", "--sun-azimuth", "10"],
+        &["--sun-azimuth", "--sun-zenith"],
+    );
+    let dir = tempfile::tempdir().expect("temp dir");
+    let style = dir.path().join("blurry.toml");
+    std::fs::write(
+        &style,
+        "preset = \"coral\"\n[ambiguity]\nneighbourhood = 0.7\n",
+    )
+    .expect("write");
+    let style = style.to_str().expect("UTF-8 path");
+    fails(
+        &["sample", "--model", "aoas", "--style", style],
+        &[
+            "--style",
+            "blurry.toml",
+            "ambiguity.neighbourhood = 0.7",
+            "[0, 0.5]",
+        ],
+    );
+    let typo = dir.path().join("typo.toml");
+    std::fs::write(&typo, "[sky_hue]\nred = 1\ngreen = 2\nblu = 3\n").expect("write");
+    fails(
+        &[
+            "sample",
+            "--model",
+            "aoas",
+            "--style",
+            typo.to_str().expect("UTF-8 path"),
+        ],
+        &["--style", "typo.toml", "line 4", "blu"],
+    );
+    let missing = dir.path().join("missing.toml");
+    fails(
+        &[
+            "sample",
+            "--model",
+            "aoas",
+            "--style",
+            missing.to_str().expect("UTF-8 path"),
+        ],
+        &["--style", "missing.toml", "cannot read"],
+    );
+    let out = dir.path().join("x.png");
+    fails(
+        &[
+            "render",
+            "--model",
+            "aoas",
+            "--style",
+            "heart",
+            "--sun-zenith",
+            "91",
+            "--out",
+            out.to_str().expect("UTF-8 path"),
+        ],
+        &["--sun-zenith", "[0, 90]"],
+    );
+    assert!(!out.exists(), "nothing written");
+}

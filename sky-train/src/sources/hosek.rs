@@ -3,7 +3,7 @@
 
 use sky_core::{Sun, Vec3, geom};
 
-use super::{ModelKind, ParamError, SkyParams, SkySource, param_error, radians};
+use super::{ModelKind, ParamError, SkyParams, SkySource, not_for, param_error};
 
 /// Ground albedo used for every Hosek-Wilkie sky (seed 000: {0.5, 0.5, 0.5}).
 pub(crate) const ALBEDO: f32 = 0.5;
@@ -23,13 +23,13 @@ impl Hosek {
     /// A [`ParamError`] naming the argument and its valid range.
     #[allow(clippy::cast_possible_truncation)]
     pub fn new(params: &SkyParams) -> Result<Self, ParamError> {
-        let err = |e| param_error(ModelKind::Hosek, e);
-        let sun = Sun::new(
-            radians(params.sun_zenith_deg),
-            radians(params.sun_azimuth_deg),
-        )
-        .map_err(err)?;
-        let turbidity = params.turbidity as f32;
+        let kind = ModelKind::Hosek;
+        if params.style.is_some() {
+            return Err(not_for(kind, "--style", "aoas"));
+        }
+        let err = |e| param_error(kind, e);
+        let sun = params.required_sun(kind)?;
+        let turbidity = params.turbidity.unwrap_or(3.0) as f32;
         if !(1.0..=10.0).contains(&turbidity) {
             return Err(err(sky_core::SkyError::OutOfRange {
                 parameter: "turbidity",

@@ -3,6 +3,7 @@
 //! Each source evaluates whole slices of directions at once (the fast path of every model), in
 //! sky-core's conventions: +z up, luminance in cd/m², linear sRGB on the same scale.
 
+mod aoas;
 mod hosek;
 mod neural;
 mod preetham;
@@ -12,6 +13,7 @@ use std::fmt;
 use sky_core::Vec3;
 use sky_core::color::{self, Xyy};
 
+pub use aoas::Aoas;
 pub use hosek::Hosek;
 pub use neural::Neural;
 pub use preetham::Preetham;
@@ -48,6 +50,8 @@ pub enum ModelKind {
     NeuralHosek,
     /// A neural sky from a weight file (`--weights FILE`).
     Neural,
+    /// The AOAS single-scattering skydome with a style (sky-core, seed 004).
+    Aoas,
 }
 
 impl ModelKind {
@@ -55,7 +59,11 @@ impl ModelKind {
     #[must_use]
     pub fn sun_zenith_range_deg(self) -> (f64, f64) {
         match self {
-            Self::Preetham | Self::Hosek | Self::NeuralPreetham | Self::NeuralHosek => (0.0, 90.0),
+            Self::Preetham
+            | Self::Hosek
+            | Self::NeuralPreetham
+            | Self::NeuralHosek
+            | Self::Aoas => (0.0, 90.0),
             Self::Neural => (0.0, 180.0),
         }
     }
@@ -67,6 +75,8 @@ impl ModelKind {
             Self::Preetham | Self::NeuralPreetham => (2.0, 6.0),
             Self::Hosek | Self::NeuralHosek => (1.0, 10.0),
             Self::Neural => (0.0, f64::INFINITY),
+            // AOAS has no turbidity (its atmosphere is set by its style).
+            Self::Aoas => (0.0, 0.0),
         }
     }
 }
@@ -79,19 +89,51 @@ impl fmt::Display for ModelKind {
             Self::NeuralPreetham => "neural-preetham",
             Self::NeuralHosek => "neural-hosek",
             Self::Neural => "neural",
+            Self::Aoas => "aoas",
         })
     }
 }
 
-/// The parameters that select one sky: the sun and the atmosphere.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The parameters that select one sky: the sun, the atmosphere, the style. Which ones a model
+/// needs, and which it refuses, is the model's business ([`build`]).
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct SkyParams {
-    /// Sun zenith angle in degrees.
-    pub sun_zenith_deg: f64,
-    /// Sun azimuth in degrees (sky-core's convention: from +x towards +y).
-    pub sun_azimuth_deg: f64,
-    /// Atmospheric turbidity.
-    pub turbidity: f64,
+    /// Sun zenith angle in degrees (required by preetham; for aoas it replaces the style's day
+    /// cycle).
+    pub sun_zenith_deg: Option<f64>,
+    /// Sun azimuth in degrees (sky-core's convention: from +x towards +y); 0 when absent.
+    pub sun_azimuth_deg: Option<f64>,
+    /// Atmospheric turbidity (preetham only; 3 when absent).
+    pub turbidity: Option<f64>,
+    /// A style preset name or a style file in TOML (aoas only; `physical` when absent).
+    pub style: Option<String>,
+}
+
+impl SkyParams {
+    /// A sky given by its sun and turbidity, without a style.
+    #[must_use]
+    pub fn sun_and_turbidity(sun_zenith_deg: f64, sun_azimuth_deg: f64, turbidity: f64) -> Self {
+        Self {
+            sun_zenith_deg: Some(sun_zenith_deg),
+            sun_azimuth_deg: Some(sun_azimuth_deg),
+            turbidity: Some(turbidity),
+            style: None,
+        }
+    }
+
+    /// The sun of a model that requires `--sun-zenith`.
+    pub(crate) fn required_sun(&self, kind: ModelKind) -> Result<sky_core::Sun, ParamError> {
+        let Some(zenith) = self.sun_zenith_deg else {
+            return Err(ParamError(format!(
+                "--sun-zenith <DEG> is required for --model {kind}"
+            )));
+        };
+        sky_core::Sun::new(
+            radians(zenith),
+            radians(self.sun_azimuth_deg.unwrap_or(0.0)),
+        )
+        .map_err(|e| param_error(kind, e))
+    }
 }
 
 /// A parameter the user gave that the model rejects, phrased in the command line's terms.
@@ -128,58 +170,87 @@ pub fn build(kind: ModelKind, params: &SkyParams) -> Result<Box<dyn SkySource>, 
             "--model neural needs --weights FILE (a weight file written by `sky-train train`)"
                 .into(),
         )),
+        ModelKind::Aoas => Ok(Box::new(Aoas::new(params)?)),
     }
+}
+
+/// A `ParamError` for a parameter `kind` does not take.
+pub(crate) fn not_for(kind: ModelKind, flag: &str, models: &str) -> ParamError {
+    ParamError(format!(
+        "{flag} does not apply to --model {kind} (only to --model {models})"
+    ))
 }
 
 /// Rewrites a sky-core error in the command line's terms (argument names, degrees).
 pub(crate) fn param_error(kind: ModelKind, e: sky_core::SkyError) -> ParamError {
     use sky_core::SkyError as E;
     let (lo, hi) = kind.sun_zenith_range_deg();
-    let sun_zenith = |value: f32| {
-        format!(
-            "--sun-zenith {} deg is outside the valid range [{lo}, {hi}] deg for --model {kind}",
-            value.to_degrees()
-        )
-    };
     let msg = match e {
         E::OutOfRange {
             parameter: "sun zenith [rad]",
             value,
             ..
         }
-        | E::SunBelowHorizon { zenith: value } => sun_zenith(value),
-        E::NotFinite { parameter } => format!("{} must be a finite number", flag(parameter)),
+        | E::SunBelowHorizon { zenith: value } => format!(
+            "--sun-zenith {} deg is outside the valid range [{lo}, {hi}] deg for --model {kind}",
+            value.to_degrees()
+        ),
+        other => format!(
+            "{} for --model {kind}",
+            describe(other, |p| flag(p).to_owned(), " ")
+        ),
+    };
+    ParamError(msg)
+}
+
+/// Describes a sky-core error with each parameter named by `name` (given the parameter's name
+/// without its unit) and `separator` between the name and its value; angles in degrees.
+pub(crate) fn describe(
+    e: sky_core::SkyError,
+    name: impl Fn(&str) -> String,
+    separator: &str,
+) -> String {
+    use sky_core::SkyError as E;
+    // "clouds.radius [rad]" -> ("clouds.radius", "rad")
+    let split = |parameter: &'static str| match parameter.rsplit_once(" [") {
+        Some((base, unit)) => (base, unit.trim_end_matches(']')),
+        None => (parameter, ""),
+    };
+    match e {
+        E::NotFinite { parameter } => {
+            format!("{} must be a finite number", name(split(parameter).0))
+        }
         E::OutOfRange {
             parameter,
             value,
             min,
             max,
         } => {
-            let (value, min, max, unit) = if parameter.ends_with("[rad]") {
-                (
+            let (base, unit) = split(parameter);
+            let (value, min, max, unit) = match unit {
+                "rad" => (
                     value.to_degrees(),
                     min.to_degrees(),
                     max.to_degrees(),
-                    " deg",
-                )
-            } else {
-                (value, min, max, "")
+                    " deg".to_owned(),
+                ),
+                "" => (value, min, max, String::new()),
+                other => (value, min, max, format!(" {other}")),
             };
             format!(
-                "{} {value}{unit} is outside the valid range [{min}, {max}]{unit} for --model {kind}",
-                flag(parameter)
+                "{}{separator}{value}{unit} is outside the valid range [{min}, {max}]{unit}",
+                name(base)
             )
         }
         other => other.to_string(),
-    };
-    ParamError(msg)
+    }
 }
 
 fn flag(parameter: &str) -> &str {
     match parameter {
         "turbidity" => "--turbidity",
-        "sun zenith [rad]" => "--sun-zenith",
-        "sun azimuth [rad]" => "--sun-azimuth",
+        "sun zenith" => "--sun-zenith",
+        "sun azimuth" => "--sun-azimuth",
         other => other,
     }
 }

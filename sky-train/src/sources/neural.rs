@@ -1,9 +1,9 @@
 //! Neural skies of sky-core: the shipped weights or any weight file.
 
+use sky_core::Vec3;
 use sky_core::neural::{NeuralSky, NeuralWeights};
-use sky_core::{Sun, Vec3};
 
-use super::{ModelKind, ParamError, SkyParams, SkySource, param_error, radians};
+use super::{ModelKind, ParamError, SkyParams, SkySource, not_for, param_error};
 use crate::dispatch;
 
 /// A [`sky_core::NeuralSky`] as a [`SkySource`].
@@ -23,21 +23,21 @@ impl Neural {
         kind: ModelKind,
         params: &SkyParams,
     ) -> Result<Self, ParamError> {
-        let err = |e| param_error(kind, e);
-        let sun = Sun::new(
-            radians(params.sun_zenith_deg),
-            radians(params.sun_azimuth_deg),
-        )
-        .map_err(err)?;
-        let sky = NeuralSky::new(weights, sun, params.turbidity as f32).map_err(err)?;
+        if params.style.is_some() {
+            return Err(not_for(kind, "--style", "aoas"));
+        }
+        let sun = params.required_sun(kind)?;
+        let turbidity = params.turbidity.unwrap_or(3.0);
+        let sky =
+            NeuralSky::new(weights, sun, turbidity as f32).map_err(|e| param_error(kind, e))?;
         Ok(Self {
             sky,
             label: format!(
                 "{kind} (6-12-3 network trained on {}): sun zenith {:.2} deg, azimuth {:.2} deg, turbidity {}",
                 weights.source_name(),
-                params.sun_zenith_deg,
-                params.sun_azimuth_deg,
-                params.turbidity
+                sun.zenith().to_degrees(),
+                sun.azimuth().to_degrees(),
+                turbidity
             ),
         })
     }

@@ -88,11 +88,7 @@ pub fn input(turbidity: f64, theta_s: f64, v: [f64; 3]) -> [f64; 6] {
 fn evaluate(model: ModelKind, case: SkyCase, views: &[Vec3]) -> anyhow::Result<Vec<Vec3>> {
     let source = sources::build(
         model,
-        &SkyParams {
-            sun_zenith_deg: case.sun_zenith.to_degrees(),
-            sun_azimuth_deg: 180.0,
-            turbidity: case.turbidity,
-        },
+        &SkyParams::sun_and_turbidity(case.sun_zenith.to_degrees(), 180.0, case.turbidity),
     )?;
     let mut out = vec![Vec3::ZERO; views.len()];
     source.rgb_batch(views, &mut out);
@@ -234,11 +230,11 @@ pub fn test_set(
         .map(|&case| {
             let source = sources::build(
                 model,
-                &SkyParams {
-                    sun_zenith_deg: case.sun_zenith.to_degrees(),
-                    sun_azimuth_deg: TEST_SUN_AZIMUTH.to_degrees(),
-                    turbidity: case.turbidity,
-                },
+                &SkyParams::sun_and_turbidity(
+                    case.sun_zenith.to_degrees(),
+                    TEST_SUN_AZIMUTH.to_degrees(),
+                    case.turbidity,
+                ),
             )?;
             let mut reference = vec![Vec3::ZERO; dirs.len()];
             source.rgb_batch(&dirs, &mut reference);
