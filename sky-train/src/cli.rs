@@ -579,6 +579,7 @@ fn eval_command(args: &EvalArgs, output: &mut dyn Write) -> Result<()> {
     let reference = match weights.source_name() {
         "preetham" => ModelKind::Preetham,
         "hosek" => ModelKind::Hosek,
+        "aoas" => ModelKind::Aoas,
         other => bail!("the weights were trained on `{other}`, which eval has no reference for"),
     };
     let network = |p: &SkyParams| -> Result<Box<dyn sources::SkySource>> {

@@ -141,7 +141,7 @@ pub fn evaluate(
     let images = test
         .par_iter()
         .map(|image| {
-            let params = params_of(image.case);
+            let params = params_of(model, image.case);
             let source = network(&params)?;
             let mut predicted = vec![Vec3::ZERO; dirs.len()];
             source.rgb_batch(&dirs, &mut predicted);
@@ -156,8 +156,9 @@ pub fn evaluate(
     Ok(Evaluation { model, images })
 }
 
-fn params_of(case: SkyCase) -> SkyParams {
-    SkyParams::sun_and_turbidity(
+fn params_of(model: ModelKind, case: SkyCase) -> SkyParams {
+    SkyParams::for_model(
+        model,
         case.sun_zenith.to_degrees(),
         TEST_SUN_AZIMUTH.to_degrees(),
         case.turbidity,

@@ -44,7 +44,7 @@ pub fn to_weights<const H: usize>(
         input_offset: s.input_offset.map(f),
         input_scale: s.input_scale.map(f),
         output_scale: [f(s.output_scale); 3],
-        uses_turbidity: true,
+        uses_turbidity: model.uses_turbidity(),
         turbidity_range: (f(tmin), f(tmax)),
         sun_zenith_range: (0.0, core::f32::consts::FRAC_PI_2),
         source,

@@ -68,6 +68,12 @@ impl ModelKind {
         }
     }
 
+    /// Whether the model has a turbidity (AOAS's atmosphere is set by its style instead).
+    #[must_use]
+    pub fn uses_turbidity(self) -> bool {
+        !matches!(self, Self::Aoas)
+    }
+
     /// The turbidities the model accepts.
     #[must_use]
     pub fn turbidity_range(self) -> (f64, f64) {
@@ -118,6 +124,21 @@ impl SkyParams {
             sun_azimuth_deg: Some(sun_azimuth_deg),
             turbidity: Some(turbidity),
             style: None,
+        }
+    }
+
+    /// The sky of `model` for a sun and turbidity; the turbidity is left out for models without
+    /// one.
+    #[must_use]
+    pub fn for_model(
+        model: ModelKind,
+        sun_zenith_deg: f64,
+        sun_azimuth_deg: f64,
+        turbidity: f64,
+    ) -> Self {
+        Self {
+            turbidity: model.uses_turbidity().then_some(turbidity),
+            ..Self::sun_and_turbidity(sun_zenith_deg, sun_azimuth_deg, turbidity)
         }
     }
 

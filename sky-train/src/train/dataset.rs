@@ -88,7 +88,7 @@ pub fn input(turbidity: f64, theta_s: f64, v: [f64; 3]) -> [f64; 6] {
 fn evaluate(model: ModelKind, case: SkyCase, views: &[Vec3]) -> anyhow::Result<Vec<Vec3>> {
     let source = sources::build(
         model,
-        &SkyParams::sun_and_turbidity(case.sun_zenith.to_degrees(), 180.0, case.turbidity),
+        &SkyParams::for_model(model, case.sun_zenith.to_degrees(), 180.0, case.turbidity),
     )?;
     let mut out = vec![Vec3::ZERO; views.len()];
     source.rgb_batch(views, &mut out);
@@ -199,6 +199,10 @@ pub const TEST_SUN_AZIMUTH: f64 = 0.7;
 /// # Errors
 /// When the model rejects a case.
 pub fn paper_test_set(model: ModelKind) -> anyhow::Result<Vec<TestImage>> {
+    if !model.uses_turbidity() {
+        // One atmosphere: the 7 test sun zeniths, 5 of which are not training ones.
+        return test_set(model, &[0.0], &sun_zeniths(7));
+    }
     let (lo, hi) = model.turbidity_range();
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
     let n = (hi - lo).round() as u32;
@@ -230,7 +234,8 @@ pub fn test_set(
         .map(|&case| {
             let source = sources::build(
                 model,
-                &SkyParams::sun_and_turbidity(
+                &SkyParams::for_model(
+                    model,
                     case.sun_zenith.to_degrees(),
                     TEST_SUN_AZIMUTH.to_degrees(),
                     case.turbidity,

@@ -362,6 +362,13 @@ impl Trained {
 /// # Errors
 /// When the model rejects a case.
 pub fn validation_set(model: ModelKind) -> Result<Vec<TestImage>> {
+    if !model.uses_turbidity() {
+        // One atmosphere: 4 sun zeniths between the test ones (multiples of 15°).
+        let zeniths: Vec<f64> = (0..4)
+            .map(|i| std::f64::consts::FRAC_PI_2 * (f64::from(i) + 0.5) / 4.0)
+            .collect();
+        return dataset::test_set(model, &[0.0], &zeniths);
+    }
     let (lo, hi) = model.turbidity_range();
     let turbidities = [lo + 0.25, 0.5 * (lo + hi) + 0.25, hi - 0.25];
     dataset::test_set(model, &turbidities, &dataset::sun_zeniths(5))
