@@ -10,7 +10,7 @@
 //! | 7 | 1 | hidden neurons H (1-255) |
 //! | 8 | 1 | outputs, `3` |
 //! | 9 | 1 | flags: bit 0 = the turbidity input is used; other bits 0 |
-//! | 10 | 2 | reserved, 0 |
+//! | 10 | 2 | reserved, must be 0 |
 //! | 12 | 24 | input offsets, 6 × f32 |
 //! | 36 | 24 | input scales, 6 × f32 |
 //! | 60 | 12 | output scales, 3 × f32 (> 0) |
@@ -294,7 +294,10 @@ impl<const H: usize> NeuralWeights<H> {
         if flags & !1 != 0 {
             return Err(WeightsError::InvalidHeader { field: "flags" });
         }
-        let _reserved: [u8; 2] = r.take();
+        let reserved: [u8; 2] = r.take();
+        if reserved != [0, 0] {
+            return Err(WeightsError::InvalidHeader { field: "reserved" });
+        }
         let input_offset = r.f32s("input offsets")?;
         let input_scale = r.f32s("input scales")?;
         let output_scale: [f32; OUTPUTS] = r.f32s("output scales")?;
@@ -507,6 +510,13 @@ mod tests {
             Err(WeightsError::InvalidHeader {
                 field: "output scales"
             })
+        );
+        let mut b = good;
+        b[11] = 0x80;
+        reseal(&mut b);
+        assert_eq!(
+            decode(&b),
+            Err(WeightsError::InvalidHeader { field: "reserved" })
         );
         let mut b = good;
         b[9] = 0b10;
