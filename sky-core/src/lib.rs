@@ -64,6 +64,7 @@ mod error;
 pub mod geom;
 mod math;
 pub mod preetham;
+pub mod sh;
 
 pub use error::SkyError;
 pub use geom::Sun;
