@@ -6,5 +6,7 @@ pub mod bench;
 pub mod cli;
 pub mod dispatch;
 pub mod image_io;
+pub mod plot;
 pub mod render;
+pub mod sh;
 pub mod sources;
