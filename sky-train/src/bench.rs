@@ -8,6 +8,7 @@ use anyhow::Result;
 use sky_core::color::{self, Xyy};
 use sky_core::geom::{Equirect, Extent};
 use sky_core::preetham::PerezCoefficients;
+use sky_core::sh::{PREETHAM, ShSky};
 use sky_core::{PreethamSky, Sun, Vec3};
 
 use crate::dispatch;
@@ -85,6 +86,15 @@ pub fn run(dirs: &[Vec3], runs: usize) -> Result<Vec<Measurement>> {
             *o = sky.rgb(black_box(*d));
         }
     });
+    let sh = ShSky::new(sky.sun(), sky.turbidity(), 7)?;
+    measure(
+        "sh radiance (7 bands), one direction".into(),
+        &mut |d, o| {
+            for (o, d) in o.iter_mut().zip(d) {
+                *o = sh.radiance(black_box(*d));
+            }
+        },
+    );
     measure("preetham rgb_batch (baseline SIMD)".into(), &mut |d, o| {
         sky.rgb_batch(d, o);
     });
@@ -154,6 +164,66 @@ pub fn report(results: &[Measurement], width: u32, height: u32) -> String {
             m.ns_per_direction,
             base / m.ns_per_direction,
             results.first().map_or("", |m| m.name.as_str()),
+        );
+    }
+    s
+}
+
+/// One measured SH reconstruction.
+#[derive(Debug, Clone)]
+pub struct ShMeasurement {
+    /// Bands reconstructed.
+    pub bands: usize,
+    /// Median nanoseconds per `ShSky::new` (eq. 1 for every coefficient, filter, rotation).
+    pub ns_per_sky: f64,
+    /// Table bytes the reconstruction reads.
+    pub table_bytes: usize,
+}
+
+/// Times `ShSky::new` for 1 to 7 bands (`runs` runs of 2000 skies over the whole domain).
+///
+/// # Errors
+/// Never in practice: the parameters are valid constants.
+#[allow(clippy::cast_precision_loss)]
+pub fn sh_reconstruction(runs: usize) -> Result<Vec<ShMeasurement>> {
+    const SKIES: usize = 2000;
+    let params: Vec<(Sun, f32)> = (0..SKIES)
+        .map(|k| {
+            let f = k as f32 / SKIES as f32;
+            Ok((Sun::new(1.57 * f, 6.0 * f)?, 2.0 + 4.0 * ((7.0 * f) % 1.0)))
+        })
+        .collect::<Result<_, sky_core::SkyError>>()?;
+    let mut results = Vec::new();
+    for bands in 1..=7 {
+        let mut failed = false;
+        let t = median_time(runs, || {
+            for &(sun, t) in &params {
+                failed |= black_box(ShSky::new(black_box(sun), black_box(t), bands)).is_err();
+            }
+        });
+        anyhow::ensure!(!failed, "ShSky::new failed");
+        results.push(ShMeasurement {
+            bands,
+            ns_per_sky: t.as_secs_f64() * 1e9 / SKIES as f64,
+            table_bytes: PREETHAM.bytes_for_bands(bands),
+        });
+    }
+    Ok(results)
+}
+
+/// Formats SH measurements as aligned lines.
+#[must_use]
+pub fn sh_report(results: &[ShMeasurement]) -> String {
+    let mut s = String::from(
+        "sh reconstruction (ShSky::new: eq. 1, filter eq. 5, rotation eq. 4), median of runs\n",
+    );
+    for m in results {
+        s += &format!(
+            "sh ShSky::new, {} band{}                 {:>8.1} ns/sky      table {:>6} bytes\n",
+            m.bands,
+            if m.bands == 1 { " " } else { "s" },
+            m.ns_per_sky,
+            m.table_bytes
         );
     }
     s

@@ -4,6 +4,7 @@
 //! sky-core's conventions: +z up, luminance in cd/m², linear sRGB on the same scale.
 
 mod preetham;
+mod sh;
 
 use std::fmt;
 
@@ -11,6 +12,7 @@ use sky_core::Vec3;
 use sky_core::color::{self, Xyy};
 
 pub use preetham::Preetham;
+pub use sh::Sh;
 
 /// A sky model evaluated over many view directions.
 pub trait SkySource: Send + Sync {
@@ -36,6 +38,9 @@ pub trait SkySource: Send + Sync {
 pub enum ModelKind {
     /// The Perez/Preetham analytic sky (sky-core).
     Preetham,
+    /// The spherical-harmonics lighting of the Preetham sky, reconstructed from sky-core's
+    /// polynomial tables (`--bands`, `--no-ringing-filter`).
+    Sh,
 }
 
 impl ModelKind {
@@ -43,7 +48,7 @@ impl ModelKind {
     #[must_use]
     pub fn sun_zenith_range_deg(self) -> (f64, f64) {
         match self {
-            Self::Preetham => (0.0, 90.0),
+            Self::Preetham | Self::Sh => (0.0, 90.0),
         }
     }
 }
@@ -52,6 +57,7 @@ impl fmt::Display for ModelKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
             Self::Preetham => "preetham",
+            Self::Sh => "sh",
         })
     }
 }
@@ -65,6 +71,23 @@ pub struct SkyParams {
     pub sun_azimuth_deg: f64,
     /// Atmospheric turbidity.
     pub turbidity: f64,
+    /// Spherical-harmonics bands (`sh` only): 1 to 7.
+    pub bands: usize,
+    /// Whether the `sh` model applies the ringing filter (seed 001, eq. 5).
+    pub ringing_filter: bool,
+}
+
+impl Default for SkyParams {
+    /// Sun at the zenith, azimuth 0, turbidity 3, 7 SH bands with the ringing filter.
+    fn default() -> Self {
+        Self {
+            sun_zenith_deg: 0.0,
+            sun_azimuth_deg: 0.0,
+            turbidity: 3.0,
+            bands: 7,
+            ringing_filter: true,
+        }
+    }
 }
 
 /// A parameter the user gave that the model rejects, phrased in the command line's terms.
@@ -86,6 +109,7 @@ impl std::error::Error for ParamError {}
 pub fn build(kind: ModelKind, params: &SkyParams) -> Result<Box<dyn SkySource>, ParamError> {
     match kind {
         ModelKind::Preetham => Ok(Box::new(Preetham::new(params)?)),
+        ModelKind::Sh => Ok(Box::new(Sh::new(params)?)),
     }
 }
 
@@ -138,6 +162,7 @@ fn flag(parameter: &str) -> &str {
         "turbidity" => "--turbidity",
         "sun zenith [rad]" => "--sun-zenith",
         "sun azimuth [rad]" => "--sun-azimuth",
+        "SH bands" => "--bands",
         other => other,
     }
 }
