@@ -172,8 +172,8 @@ pub fn report(results: &[Measurement], width: u32, height: u32) -> String {
 /// One measured SH reconstruction.
 #[derive(Debug, Clone)]
 pub struct ShMeasurement {
-    /// Bands reconstructed.
-    pub bands: usize,
+    /// What was measured.
+    pub name: String,
     /// Median nanoseconds per `ShSky::new` (eq. 1 for every coefficient, filter, rotation).
     pub ns_per_sky: f64,
     /// Table bytes the reconstruction reads.
@@ -190,7 +190,7 @@ pub fn sh_reconstruction(runs: usize) -> Result<Vec<ShMeasurement>> {
     let params: Vec<(Sun, f32)> = (0..SKIES)
         .map(|k| {
             let f = k as f32 / SKIES as f32;
-            Ok((Sun::new(1.57 * f, 6.0 * f)?, 2.0 + 4.0 * ((7.0 * f) % 1.0)))
+            Ok((Sun::new(1.57 * f, 6.0 * f)?, 2.5 + 3.5 * ((7.0 * f) % 1.0)))
         })
         .collect::<Result<_, sky_core::SkyError>>()?;
     let mut results = Vec::new();
@@ -203,11 +203,31 @@ pub fn sh_reconstruction(runs: usize) -> Result<Vec<ShMeasurement>> {
         });
         anyhow::ensure!(!failed, "ShSky::new failed");
         results.push(ShMeasurement {
-            bands,
+            name: format!("sh ShSky::new, {bands} band{}", if bands == 1 { "" } else { "s" }),
             ns_per_sky: t.as_secs_f64() * 1e9 / SKIES as f64,
             table_bytes: PREETHAM.bytes_for_bands(bands),
         });
     }
+    // The same 7-band reconstruction compiled for the CPU's widest vectors (as the batch
+    // evaluators run in `sky-train`).
+    let mut failed = false;
+    let t = median_time(runs, || {
+        dispatch::fastest(
+            #[inline(always)]
+            || {
+                for &(sun, t) in &params {
+                    let sky = ShSky::from_table(&PREETHAM, black_box(sun), black_box(t), 7, true);
+                    failed |= black_box(sky).is_err();
+                }
+            },
+        );
+    });
+    anyhow::ensure!(!failed, "ShSky::from_table failed");
+    results.push(ShMeasurement {
+        name: format!("sh ShSky::new, 7 bands ({})", dispatch::describe()),
+        ns_per_sky: t.as_secs_f64() * 1e9 / SKIES as f64,
+        table_bytes: PREETHAM.bytes_for_bands(7),
+    });
     Ok(results)
 }
 
@@ -219,11 +239,8 @@ pub fn sh_report(results: &[ShMeasurement]) -> String {
     );
     for m in results {
         s += &format!(
-            "sh ShSky::new, {} band{}                 {:>8.1} ns/sky      table {:>6} bytes\n",
-            m.bands,
-            if m.bands == 1 { " " } else { "s" },
-            m.ns_per_sky,
-            m.table_bytes
+            "{:<40} {:>8.1} ns/sky      table {:>6} bytes\n",
+            m.name, m.ns_per_sky, m.table_bytes
         );
     }
     s

@@ -9,6 +9,7 @@
 use std::f64::consts::PI;
 
 use proptest::prelude::*;
+use proptest::test_runner::FileFailurePersistence;
 use sky_core::sh::{PREETHAM, ShSky, basis, rotation};
 use sky_core::{SkyError, Sun, Vec3, geom};
 use sky_tests::reference::preetham as reference;
@@ -414,7 +415,11 @@ fn sky_strategy() -> impl Strategy<Value = (f32, f32, f32, usize)> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig {
+        cases: 64,
+        failure_persistence: Some(Box::new(FileFailurePersistence::WithSource("proptest-regressions"))),
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn radiance_and_irradiance_are_finite_and_symmetric(

@@ -48,6 +48,24 @@ pub const fn index(l: usize, m: isize) -> usize {
 /// `(2m − 1)!!`: `P_m^m / sin^m θ` without the Condon-Shortley phase.
 const DOUBLE_FACTORIAL: [f32; MAX_BANDS] = [1.0, 1.0, 3.0, 15.0, 105.0, 945.0, 10395.0];
 
+/// `[(2l − 1) / (l − m), (l + m − 1) / (l − m)]` for `l > m`: the recurrence
+/// `P_l^m = ((2l − 1) z P_{l−1}^m − (l + m − 1) P_{l−2}^m) / (l − m)` without a division.
+const RECURRENCE: [[[f32; 2]; MAX_BANDS]; MAX_BANDS] = {
+    let mut r = [[[0.0; 2]; MAX_BANDS]; MAX_BANDS];
+    let mut l = 1;
+    while l < MAX_BANDS {
+        let mut m = 0;
+        while m < l {
+            #[allow(clippy::cast_precision_loss)] // l, m ≤ 6
+            let (a, b, d) = ((2 * l - 1) as f32, (l + m - 1) as f32, (l - m) as f32);
+            r[l][m] = [a / d, b / d];
+            m += 1;
+        }
+        l += 1;
+    }
+    r
+};
+
 /// The normalisation `K_lm` (times √2 for m > 0), indexed `[l][m]` for `0 ≤ m ≤ l`; f32 roundings
 /// of the f64 values of the formula in the module docs (checked by a test).
 #[rustfmt::skip]
@@ -92,9 +110,8 @@ pub fn evaluate(dir: Vec3, bands: usize) -> [f32; MAX_COEFFICIENTS] {
         let mut q = DOUBLE_FACTORIAL[m];
         for l in m..bands {
             if l > m {
-                #[allow(clippy::cast_precision_loss)] // l, m ≤ 6
-                let (a, b, d) = ((2 * l - 1) as f32, (l + m - 1) as f32, (l - m) as f32);
-                (q_prev, q) = (q, (a * z * q - b * q_prev) / d);
+                let [a, b] = RECURRENCE[l][m];
+                (q_prev, q) = (q, a * z * q - b * q_prev);
             }
             let n = NORMALISATION[l][m] * q;
             #[allow(clippy::cast_possible_wrap)] // m ≤ 6

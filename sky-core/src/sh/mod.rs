@@ -93,6 +93,7 @@ impl ShSky {
     ///
     /// # Errors
     /// As [`new`](Self::new), with the ranges of `table`.
+    #[inline]
     pub fn from_table<const NT: usize, const NU: usize, const MT: usize, const MU: usize>(
         table: &PolynomialTable<NT, NU, MT, MU>,
         sun: Sun,

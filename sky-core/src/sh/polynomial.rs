@@ -39,20 +39,22 @@ pub const fn stored_index(l: usize, m: usize) -> usize {
 /// (`l = 5, 6`) `MT − 1` and `MU − 1`, so that each band count's accuracy can be bought where
 /// it is needed.
 ///
-/// `low[stored_index(l, m)][channel][i][j]` (and `high[stored_index(l, m) − LOW_STORED]…`)
+/// `low[i][j][stored_index(l, m)][channel]` (and `high[i][j][stored_index(l, m) − LOW_STORED]…`)
 /// multiplies `T_i(u) T_j(v)`, with `u = (2θ − θ_min − θ_max) / (θ_max − θ_min)` and likewise `v`
-/// for turbidity. The units are those of the model's radiance (cd/m² scale for the Preetham
-/// sky) per unit SH coefficient.
+/// for turbidity. The coefficients of all `(l, m)` and channels for one `(i, j)` are contiguous,
+/// so the evaluation is one multiply-add over a contiguous row per basis value, which
+/// vectorises. The units are those of the model's radiance (cd/m² scale for the Preetham sky)
+/// per unit SH coefficient.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PolynomialTable<const NT: usize, const NU: usize, const MT: usize, const MU: usize> {
     /// The fitted sun zenith range `[θ_min, θ_max]`, radians.
     pub sun_zenith: [f32; 2],
     /// The fitted turbidity range `[τ_min, τ_max]`.
     pub turbidity: [f32; 2],
-    /// The low group's polynomial coefficients, `[stored coefficient][R, G, B][i][j]`.
-    pub low: [[[[f32; NU]; NT]; 3]; LOW_STORED],
-    /// The high group's polynomial coefficients, `[stored coefficient − 15][R, G, B][i][j]`.
-    pub high: [[[[f32; MU]; MT]; 3]; HIGH_STORED],
+    /// The low group's polynomial coefficients, `[i][j][stored coefficient][R, G, B]`.
+    pub low: [[[[f32; 3]; LOW_STORED]; NU]; NT],
+    /// The high group's polynomial coefficients, `[i][j][stored coefficient − 15][R, G, B]`.
+    pub high: [[[[f32; 3]; HIGH_STORED]; MU]; MT],
 }
 
 impl<const NT: usize, const NU: usize, const MT: usize, const MU: usize>
@@ -96,12 +98,12 @@ impl<const NT: usize, const NU: usize, const MT: usize, const MU: usize>
     }
 }
 
-/// Evaluates the tables of bands `first..end` (`tables[0]` is `(first, 0)`) at the normalised
-/// `(u, v)`: the basis matrix `T_i(u) T_j(v)` is computed once and shared by every
-/// coefficient (§3.1).
+/// Evaluates the tables of bands `first..end` (`tables[i][j][0]` is `(first, 0)`) at the
+/// normalised `(u, v)`: each basis value `T_i(u) T_j(v)` is computed once and shared by every
+/// coefficient (§3.1), as one multiply-add over the contiguous row of coefficients.
 #[inline]
 fn expand<const NT: usize, const NU: usize, const K: usize>(
-    tables: &[[[[f32; NU]; NT]; 3]; K],
+    tables: &[[[[f32; 3]; K]; NU]; NT],
     u: f32,
     v: f32,
     first: usize,
@@ -110,20 +112,26 @@ fn expand<const NT: usize, const NU: usize, const K: usize>(
 ) {
     let tu: [f32; NT] = chebyshev(u);
     let tv: [f32; NU] = chebyshev(v);
-    let basis: [[f32; NU]; NT] = core::array::from_fn(|i| tv.map(|t| tu[i] * t));
     let offset = stored_index(first, 0);
+    let used = (stored_index(end, 0) - offset).min(K);
+    let mut acc = [[0.0f32; 3]; K];
+    let sums = &mut acc.as_flattened_mut()[..3 * used];
+    for (ti, rows) in tu.iter().zip(tables) {
+        for (tj, row) in tv.iter().zip(rows) {
+            let b = ti * tj;
+            for (s, p) in sums.iter_mut().zip(row.as_flattened()) {
+                *s += b * p;
+            }
+        }
+    }
     for l in first..end {
         for m in 0..=l {
-            let Some(table) = tables.get(stored_index(l, m) - offset) else {
+            let Some(c) = acc.get(stored_index(l, m) - offset) else {
                 return;
             };
             #[allow(clippy::cast_possible_wrap)] // m ≤ 6
             let at = index(l, m as isize);
-            out[at] = Vec3::new(
-                dot(&table[0], &basis),
-                dot(&table[1], &basis),
-                dot(&table[2], &basis),
-            );
+            out[at] = Vec3::from_array(*c);
         }
     }
 }
@@ -150,19 +158,6 @@ fn chebyshev<const N: usize>(x: f32) -> [f32; N] {
     t
 }
 
-/// `Σ_ij a_ij b_ij`, summed column-wise first (independent sums over `i` for each `j`, which
-/// vectorise), then across `j`.
-#[inline]
-fn dot<const NT: usize, const NU: usize>(a: &[[f32; NU]; NT], b: &[[f32; NU]; NT]) -> f32 {
-    let mut acc = [0.0f32; NU];
-    for (ra, rb) in a.iter().zip(b) {
-        for ((s, x), y) in acc.iter_mut().zip(ra).zip(rb) {
-            *s += x * y;
-        }
-    }
-    acc.iter().sum()
-}
-
 #[cfg(test)]
 #[allow(clippy::needless_range_loop, clippy::cast_precision_loss)] // index arithmetic
 mod tests {
@@ -185,12 +180,12 @@ mod tests {
         let mut table = PolynomialTable::<3, 4, 2, 2> {
             sun_zenith: [0.0, 2.0],
             turbidity: [2.0, 6.0],
-            low: [[[[0.0; 4]; 3]; 3]; LOW_STORED],
-            high: [[[[0.0; 2]; 2]; 3]; HIGH_STORED],
+            low: [[[[0.0; 3]; LOW_STORED]; 4]; 3],
+            high: [[[[0.0; 3]; HIGH_STORED]; 2]; 2],
         };
-        table.low[0][0][1][2] = 1.0;
-        table.low[stored_index(2, 1)][1][0][0] = 3.0;
-        table.high[stored_index(5, 1) - LOW_STORED][2][0][0] = 5.0;
+        table.low[1][2][0][0] = 1.0;
+        table.low[0][0][stored_index(2, 1)][1] = 3.0;
+        table.high[0][0][stored_index(5, 1) - LOW_STORED][2] = 5.0;
         let mut out = [Vec3::ONE; MAX_COEFFICIENTS];
         table.evaluate(1.5, 5.0, 7, &mut out);
         let (u, v) = (0.5f32, 0.5f32);

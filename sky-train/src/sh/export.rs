@@ -55,23 +55,26 @@ pub fn command(fit: &ShFit) -> String {
     s
 }
 
-/// Writes one group's tables: `[[[[f32; NU]; NT]; 3]; K]` with a comment per coefficient.
+/// Writes one group's tables, `[[[[f32; 3]; K]; NU]; NT]`: one line per `(i, j)` holding every
+/// `(l, m)` of the group as `[R, G, B]`.
 fn write_group(w: &mut String, name: &str, fit: &ShFit, low: bool) {
+    let group: Vec<&[Vec<Vec<f32>>; 3]> = stored_lm()
+        .into_iter()
+        .zip(&fit.polynomials)
+        .filter(|((l, _), _)| (*l < LOW_BANDS) == low)
+        .map(|(_, p)| p)
+        .collect();
+    let d = if low { fit.config.low } else { fit.config.high };
     writeln!(w, "    {name}: [").ok();
-    for ((l, m), poly) in stored_lm().into_iter().zip(&fit.polynomials) {
-        if (l < LOW_BANDS) != low {
-            continue;
-        }
-        writeln!(w, "        // l = {l}, m = {m}").ok();
+    for i in 0..=d.theta {
+        writeln!(w, "        // T_{i}(u)").ok();
         writeln!(w, "        [").ok();
-        for (channel, rows) in ["R", "G", "B"].iter().zip(poly) {
-            writeln!(w, "            // {channel}").ok();
-            writeln!(w, "            [").ok();
-            for row in rows {
-                let values: Vec<String> = row.iter().map(|v| format!("{v:?}")).collect();
-                writeln!(w, "                [{}],", values.join(", ")).ok();
-            }
-            writeln!(w, "            ],").ok();
+        for j in 0..=d.tau {
+            let cells: Vec<String> = group
+                .iter()
+                .map(|p| format!("[{:?}, {:?}, {:?}]", p[0][i][j], p[1][i][j], p[2][i][j]))
+                .collect();
+            writeln!(w, "            [{}],", cells.join(", ")).ok();
         }
         writeln!(w, "        ],").ok();
     }
@@ -112,7 +115,11 @@ pub fn rust_source(fit: &ShFit) -> String {
         c.low.theta, c.low.tau, c.high.theta, c.high.tau
     )
     .ok();
-    writeln!(w, "//! m >= 0 coefficients and linear sRGB.").ok();
+    writeln!(
+        w,
+        "//! m >= 0 coefficients and linear sRGB; one line per Chebyshev term T_i(u) T_j(v)."
+    )
+    .ok();
     writeln!(w).ok();
     writeln!(w, "use super::polynomial::PolynomialTable;").ok();
     writeln!(w).ok();
