@@ -15,6 +15,8 @@ use cortex_m_rt::{ExceptionFrame, entry, exception};
 use cortex_m_semihosting::{debug, heprintln, hprintln};
 use sky_core::{PreethamSky, SkyError, Sun, geom};
 
+mod sh;
+
 /// The largest relative deviation from the host accepted for any value.
 const TOLERANCE: f32 = 1e-6;
 
@@ -142,6 +144,7 @@ fn main() -> ! {
         failures,
         CASES.len()
     );
+    failures += sh::check_all();
     debug::exit(if failures == 0 {
         debug::EXIT_SUCCESS
     } else {
