@@ -39,6 +39,7 @@
 //! | model | type | source |
 //! |---|---|---|
 //! | Perez all-weather luminance distribution with Preetham's coefficients | [`PreethamSky`] | Perez et al. 1993; Preetham, Shirley, Smits 1999 (seed 002, eqs. 1-19) |
+//! | spherical-harmonics lighting of the Preetham sky, from polynomial tables | [`sh::ShSky`] | Habel, Mustata, Wimmer 2008 (seed 001, eqs. 1-5); Ramamoorthi, Hanrahan 2001 |
 //!
 //! # Features
 //!

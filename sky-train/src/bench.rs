@@ -203,7 +203,10 @@ pub fn sh_reconstruction(runs: usize) -> Result<Vec<ShMeasurement>> {
         });
         anyhow::ensure!(!failed, "ShSky::new failed");
         results.push(ShMeasurement {
-            name: format!("sh ShSky::new, {bands} band{}", if bands == 1 { "" } else { "s" }),
+            name: format!(
+                "sh ShSky::new, {bands} band{}",
+                if bands == 1 { "" } else { "s" }
+            ),
             ns_per_sky: t.as_secs_f64() * 1e9 / SKIES as f64,
             table_bytes: PREETHAM.bytes_for_bands(bands),
         });

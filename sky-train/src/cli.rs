@@ -241,13 +241,22 @@ fn fit_sh(args: &FitShArgs, output: &mut dyn Write) -> Result<()> {
     )?;
     writeln!(output, "  wrote {}", out.display())?;
     if let Some(dir) = &args.report {
-        let (errors, paths) = report::write(&fit, dir)?;
+        // The paper's uniform degrees, for comparison.
+        let paper = ShFit::run(&FitConfig {
+            turbidity: config.turbidity,
+            ..FitConfig::paper(args.model)
+        })?;
+        let (errors, paper_errors, paths) = report::write(&fit, Some(&paper), dir)?;
         writeln!(
             output,
             "errors (eqs. 2-3) over {} skies off the fit grid:",
             errors.skies
         )?;
         write!(output, "{}", report::markdown(&fit, &errors))?;
+        if let Some(p) = paper_errors {
+            writeln!(output, "with the paper's degrees (13, 7) for every band:")?;
+            write!(output, "{}", report::markdown(&paper, &p))?;
+        }
         for p in paths {
             writeln!(output, "  wrote {}", p.display())?;
         }

@@ -64,7 +64,8 @@ impl LogChart {
         } else {
             (-1, 0)
         };
-        let d1 = d1.max(d0 + 1);
+        // One decade of headroom above the data for the legend.
+        let d1 = d1.max(d0 + 1) + 1;
         let (x0, x1) = (f64::from(self.x_range.0), f64::from(self.x_range.1));
         let px = |x: f64| left as f64 + (x - x0) / (x1 - x0) * pw as f64;
         let py = |y: f64| top as f64 + (f64::from(d1) - y.log10()) / f64::from(d1 - d0) * ph as f64;
@@ -145,8 +146,8 @@ impl LogChart {
             for &(x, y) in &pts {
                 marker(&mut img, x, y, s.colour, s.square);
             }
-            let ly = top + ph - 30 - 22 * (self.series.len() - 1 - k);
-            let lx = left + pw - 20 - 12 * GLYPH_W;
+            let ly = top + 12 + 22 * k;
+            let lx = left + 20;
             line(
                 &mut img,
                 (lx as f64, ly as f64 + 7.0),

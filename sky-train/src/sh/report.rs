@@ -104,10 +104,11 @@ pub fn markdown(fit: &ShFit, report: &ErrorReport) -> String {
     s
 }
 
-/// The chart of the worst E_mean and E_max per band count (like the paper's Fig. 3).
+/// The chart of the worst E_mean and E_max per band count (like the paper's Fig. 3), with the
+/// same for a second fit (`paper`: the paper's uniform degrees) in lighter colours.
 #[must_use]
 #[allow(clippy::cast_precision_loss)]
-pub fn chart(fit: &ShFit, report: &ErrorReport) -> RgbImage {
+pub fn chart(fit: &ShFit, report: &ErrorReport, paper: Option<&ErrorReport>) -> RgbImage {
     let points = |v: &[(f64, (f64, f64)); BANDS]| -> Vec<(f64, f64)> {
         v.iter()
             .enumerate()
@@ -122,20 +123,39 @@ pub fn chart(fit: &ShFit, report: &ErrorReport) -> RgbImage {
         x_label: "bands N".into(),
         y_label: "relative error".into(),
         x_range: (1, 7),
-        series: vec![
-            Series {
-                label: "E max".into(),
-                colour: Vec3::new(0.8, 0.05, 0.02),
-                points: points(&report.worst.max),
-                square: true,
-            },
-            Series {
-                label: "E mean".into(),
-                colour: Vec3::new(0.02, 0.1, 0.8),
-                points: points(&report.worst.mean),
-                square: false,
-            },
-        ],
+        series: paper
+            .into_iter()
+            .flat_map(|p| {
+                [
+                    Series {
+                        label: "E max (13,7)".into(),
+                        colour: Vec3::new(1.0, 0.45, 0.3),
+                        points: points(&p.worst.max),
+                        square: true,
+                    },
+                    Series {
+                        label: "E mean (13,7)".into(),
+                        colour: Vec3::new(0.35, 0.6, 1.0),
+                        points: points(&p.worst.mean),
+                        square: false,
+                    },
+                ]
+            })
+            .chain([
+                Series {
+                    label: "E max".into(),
+                    colour: Vec3::new(0.8, 0.05, 0.02),
+                    points: points(&report.worst.max),
+                    square: true,
+                },
+                Series {
+                    label: "E mean".into(),
+                    colour: Vec3::new(0.02, 0.1, 0.8),
+                    points: points(&report.worst.mean),
+                    square: false,
+                },
+            ])
+            .collect(),
     }
     .draw(720, 480)
 }
@@ -225,20 +245,38 @@ pub fn renders(fit: &ShFit, report: &ErrorReport, dir: &Path) -> Result<Vec<Path
     Ok(vec![fig2, fig4])
 }
 
-/// Writes `sh_errors.md` and `sh_errors.png` (and the renders) into `dir`; returns the paths.
+/// Writes `sh_errors.md` and `sh_errors.png` (and the renders) into `dir`, comparing with
+/// `paper` (the same model fitted with the paper's degrees) when given; returns the reports
+/// and the paths.
 ///
 /// # Errors
 /// On a file that cannot be written, or as [`errors`].
-pub fn write(fit: &ShFit, dir: &Path) -> Result<(ErrorReport, Vec<PathBuf>)> {
+pub fn write(
+    fit: &ShFit,
+    paper: Option<&ShFit>,
+    dir: &Path,
+) -> Result<(ErrorReport, Option<ErrorReport>, Vec<PathBuf>)> {
     std::fs::create_dir_all(dir)?;
     let report = errors(fit, &test_points(&fit.config))?;
+    let paper_report = paper
+        .map(|p| errors(p, &test_points(&p.config)))
+        .transpose()?;
     let md = dir.join("sh_errors.md");
-    image_io::write_text(&md, &markdown(fit, &report))?;
+    let mut text = markdown(fit, &report);
+    if let (Some(p), Some(r)) = (paper, &paper_report) {
+        text += &format!(
+            "\nWith the paper's degrees (13, 7) for every band ({} x {} points):\n\n{}",
+            p.config.nodes_theta,
+            p.config.nodes_tau,
+            markdown(p, r)
+        );
+    }
+    image_io::write_text(&md, &text)?;
     let png = dir.join("sh_errors.png");
-    image_io::write_png(&png, &chart(fit, &report), 1.0)?;
+    image_io::write_png(&png, &chart(fit, &report, paper_report.as_ref()), 1.0)?;
     let mut paths = vec![md, png];
     paths.extend(renders(fit, &report, dir)?);
-    Ok((report, paths))
+    Ok((report, paper_report, paths))
 }
 
 fn title_case(s: &str) -> String {
