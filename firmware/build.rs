@@ -80,11 +80,19 @@ fn sh_expected_table() -> Result<String, Box<dyn Error>> {
         }
         writeln!(cases, "    ShCase {{")?;
         writeln!(cases, "        sun_zenith: {:?},", zenith_deg.to_radians())?;
-        writeln!(cases, "        sun_azimuth: {:?},", azimuth_deg.to_radians())?;
+        writeln!(
+            cases,
+            "        sun_azimuth: {:?},",
+            azimuth_deg.to_radians()
+        )?;
         writeln!(cases, "        turbidity: {turbidity:?},")?;
         writeln!(cases, "        bands: {bands},")?;
         writeln!(cases, "        filter: {filter},")?;
-        writeln!(cases, "        coefficients: [{}],", coefficients.join(", "))?;
+        writeln!(
+            cases,
+            "        coefficients: [{}],",
+            coefficients.join(", ")
+        )?;
         writeln!(cases, "        radiance: [{}],", radiance.join(", "))?;
         writeln!(cases, "        irradiance: [{}],", irradiance.join(", "))?;
         writeln!(cases, "    }},")?;

@@ -6,7 +6,7 @@ use cortex_m_semihosting::hprintln;
 use sky_core::sh::ShSky;
 use sky_core::{SkyError, Sun, geom};
 
-use crate::Deviation;
+use crate::{Deviation, tally};
 
 /// The largest relative deviation from the host accepted (relative to the largest magnitude of
 /// each compared group: a case's coefficients, one radiance, one irradiance).
@@ -41,7 +41,12 @@ fn check(case: &ShCase) -> Result<Deviation, SkyError> {
     let mut deviation = Deviation::default();
     let mut actual = [0.0f32; 49 * 3];
     let mut expected = [0.0f32; 49 * 3];
-    for (i, (c, e)) in sky.coefficients().iter().zip(&case.coefficients).enumerate() {
+    for (i, (c, e)) in sky
+        .coefficients()
+        .iter()
+        .zip(&case.coefficients)
+        .enumerate()
+    {
         actual[3 * i..3 * i + 3].copy_from_slice(&c.to_array());
         expected[3 * i..3 * i + 3].copy_from_slice(e);
     }
@@ -68,30 +73,19 @@ pub(crate) fn check_all() -> usize {
     let mut total = Deviation::default();
     let mut failures = 0usize;
     for (index, case) in SH_CASES.iter().enumerate() {
-        let sun = case.sun_zenith.to_degrees();
-        match check(case) {
-            Ok(deviation) => {
-                let pass = deviation.max <= SH_TOLERANCE;
-                hprintln!(
-                    "sh case {}: sun zenith {:4.1} deg, T {:.1}, {} bands{}: max rel dev {:e}, {}/{} bit-identical: {}",
-                    index,
-                    sun,
-                    case.turbidity,
-                    case.bands,
-                    if case.filter { ", filtered" } else { "" },
-                    deviation.max,
-                    deviation.identical,
-                    deviation.compared,
-                    if pass { "ok" } else { "FAIL" }
-                );
-                failures += usize::from(!pass);
-                total.merge(&deviation);
-            }
-            Err(error) => {
-                hprintln!("sh case {index}: FAIL: {error}");
-                failures += 1;
-            }
-        }
+        failures += tally(
+            format_args!(
+                "sh case {}: sun zenith {:4.1} deg, T {:.1}, {} bands{}",
+                index,
+                case.sun_zenith.to_degrees(),
+                case.turbidity,
+                case.bands,
+                if case.filter { ", filtered" } else { "" }
+            ),
+            check(case),
+            SH_TOLERANCE,
+            &mut total,
+        );
     }
     hprintln!(
         "sh: max rel dev {:e} over {} values, {} bit-identical; {} of {} cases failed",

@@ -61,33 +61,30 @@ impl Matrix {
         self.data[r * self.cols + c]
     }
 
+    /// The matrix whose row `i` is `row(points[i])`, of `cols` entries.
+    fn from_rows(points: &[f64], cols: usize, row: impl Fn(f64) -> Vec<f64>) -> Self {
+        Self {
+            rows: points.len(),
+            cols,
+            data: points.iter().flat_map(|&x| row(x)).collect(),
+        }
+    }
+
     /// The design matrix `[T_j(u(x_i))]` of `points` in `[lo, hi]` for degree `degree`.
     #[must_use]
     pub fn chebyshev_design(points: &[f64], lo: f64, hi: f64, degree: usize) -> Self {
-        let data = points
-            .iter()
-            .flat_map(|&x| chebyshev(normalise(x, lo, hi), degree + 1))
-            .collect();
-        Self {
-            rows: points.len(),
-            cols: degree + 1,
-            data,
-        }
+        Self::from_rows(points, degree + 1, |x| {
+            chebyshev(normalise(x, lo, hi), degree + 1)
+        })
     }
 
     /// The design matrix of raw monomials `[x_i^j]` (eq. 1 as printed), for comparison.
     #[must_use]
     #[allow(clippy::cast_possible_wrap, clippy::cast_possible_truncation)]
     pub fn monomial_design(points: &[f64], degree: usize) -> Self {
-        let data = points
-            .iter()
-            .flat_map(|&x| (0..=degree).map(move |j| x.powi(j as i32)))
-            .collect();
-        Self {
-            rows: points.len(),
-            cols: degree + 1,
-            data,
-        }
+        Self::from_rows(points, degree + 1, |x| {
+            (0..=degree).map(|j| x.powi(j as i32)).collect()
+        })
     }
 
     /// The 2-norm condition number `σ_max / σ_min`, from the eigenvalues of `AᵀA` (cyclic

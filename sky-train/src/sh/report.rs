@@ -107,14 +107,7 @@ pub fn markdown(fit: &ShFit, report: &ErrorReport) -> String {
 /// The chart of the worst E_mean and E_max per band count (like the paper's Fig. 3), with the
 /// same for a second fit (`paper`: the paper's uniform degrees) in lighter colours.
 #[must_use]
-#[allow(clippy::cast_precision_loss)]
 pub fn chart(fit: &ShFit, report: &ErrorReport, paper: Option<&ErrorReport>) -> RgbImage {
-    let points = |v: &[(f64, (f64, f64)); BANDS]| -> Vec<(f64, f64)> {
-        v.iter()
-            .enumerate()
-            .map(|(n, e)| ((n + 1) as f64, e.0))
-            .collect()
-    };
     LogChart {
         title: format!(
             "{} SH: highest relative error, all channels",
@@ -126,38 +119,47 @@ pub fn chart(fit: &ShFit, report: &ErrorReport, paper: Option<&ErrorReport>) -> 
         series: paper
             .into_iter()
             .flat_map(|p| {
-                [
-                    Series {
-                        label: "E max (13,7)".into(),
-                        colour: Vec3::new(1.0, 0.45, 0.3),
-                        points: points(&p.worst.max),
-                        square: true,
-                    },
-                    Series {
-                        label: "E mean (13,7)".into(),
-                        colour: Vec3::new(0.35, 0.6, 1.0),
-                        points: points(&p.worst.mean),
-                        square: false,
-                    },
-                ]
+                pair(
+                    p,
+                    " (13,7)",
+                    Vec3::new(1.0, 0.45, 0.3),
+                    Vec3::new(0.35, 0.6, 1.0),
+                )
             })
-            .chain([
-                Series {
-                    label: "E max".into(),
-                    colour: Vec3::new(0.8, 0.05, 0.02),
-                    points: points(&report.worst.max),
-                    square: true,
-                },
-                Series {
-                    label: "E mean".into(),
-                    colour: Vec3::new(0.02, 0.1, 0.8),
-                    points: points(&report.worst.mean),
-                    square: false,
-                },
-            ])
+            .chain(pair(
+                report,
+                "",
+                Vec3::new(0.8, 0.05, 0.02),
+                Vec3::new(0.02, 0.1, 0.8),
+            ))
             .collect(),
     }
     .draw(720, 480)
+}
+
+/// The E_max and E_mean series of `report`, labelled with `suffix`.
+#[allow(clippy::cast_precision_loss)]
+fn pair(report: &ErrorReport, suffix: &str, max: Vec3, mean: Vec3) -> [Series; 2] {
+    let points = |v: &[(f64, (f64, f64)); BANDS]| -> Vec<(f64, f64)> {
+        v.iter()
+            .enumerate()
+            .map(|(n, e)| ((n + 1) as f64, e.0))
+            .collect()
+    };
+    [
+        Series {
+            label: format!("E max{suffix}"),
+            colour: max,
+            points: points(&report.worst.max),
+            square: true,
+        },
+        Series {
+            label: format!("E mean{suffix}"),
+            colour: mean,
+            points: points(&report.worst.mean),
+            square: false,
+        },
+    ]
 }
 
 /// [`ShSky`] (any coefficients) as a [`SkySource`], for rendering.

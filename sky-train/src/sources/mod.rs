@@ -167,6 +167,15 @@ fn flag(parameter: &str) -> &str {
     }
 }
 
+/// The sun of `params` for `kind`, with sky-core's error rewritten in the command line's terms.
+pub(crate) fn sun(kind: ModelKind, params: &SkyParams) -> Result<sky_core::Sun, ParamError> {
+    sky_core::Sun::new(
+        radians(params.sun_zenith_deg),
+        radians(params.sun_azimuth_deg),
+    )
+    .map_err(|e| param_error(kind, e))
+}
+
 /// Converts degrees to radians in f64 and rounds once to f32.
 #[allow(clippy::cast_possible_truncation)] // the point of the function
 #[must_use]

@@ -1,11 +1,11 @@
 //! The Preetham sky of sky-core.
 
 use sky_core::color::Xyy;
-use sky_core::{PreethamSky, Sun, Vec3};
+use sky_core::{PreethamSky, Vec3};
 
 use crate::dispatch;
 
-use super::{ModelKind, ParamError, SkyParams, SkySource, param_error, radians};
+use super::{ModelKind, ParamError, SkyParams, SkySource, param_error, sun};
 
 /// [`sky_core::PreethamSky`] as a [`SkySource`].
 #[derive(Debug, Clone, Copy)]
@@ -18,15 +18,10 @@ impl Preetham {
     /// A [`ParamError`] when sky-core rejects a parameter.
     #[allow(clippy::cast_possible_truncation)]
     pub fn new(params: &SkyParams) -> Result<Self, ParamError> {
-        let err = |e| param_error(ModelKind::Preetham, e);
-        let sun = Sun::new(
-            radians(params.sun_zenith_deg),
-            radians(params.sun_azimuth_deg),
-        )
-        .map_err(err)?;
+        let sun = sun(ModelKind::Preetham, params)?;
         PreethamSky::new(sun, params.turbidity as f32)
             .map(Self)
-            .map_err(err)
+            .map_err(|e| param_error(ModelKind::Preetham, e))
     }
 }
 

@@ -1,9 +1,9 @@
 //! The spherical-harmonics lighting of sky-core (`sky_core::sh::ShSky`) as a sky source.
 
+use sky_core::Vec3;
 use sky_core::sh::ShSky;
-use sky_core::{Sun, Vec3};
 
-use super::{ModelKind, ParamError, SkyParams, SkySource, param_error, radians};
+use super::{ModelKind, ParamError, SkyParams, SkySource, param_error, sun};
 
 /// [`ShSky`] as a [`SkySource`]: the radiance of the SH expansion in each direction.
 #[derive(Debug, Clone)]
@@ -19,19 +19,14 @@ impl Sh {
     /// A [`ParamError`] when sky-core rejects a parameter.
     #[allow(clippy::cast_possible_truncation)]
     pub fn new(params: &SkyParams) -> Result<Self, ParamError> {
-        let err = |e| param_error(ModelKind::Sh, e);
-        let sun = Sun::new(
-            radians(params.sun_zenith_deg),
-            radians(params.sun_azimuth_deg),
-        )
-        .map_err(err)?;
+        let sun = sun(ModelKind::Sh, params)?;
         let t = params.turbidity as f32;
         let sky = if params.ringing_filter {
             ShSky::new(sun, t, params.bands)
         } else {
             ShSky::new_unfiltered(sun, t, params.bands)
         }
-        .map_err(err)?;
+        .map_err(|e| param_error(ModelKind::Sh, e))?;
         Ok(Self {
             sky,
             params: *params,
