@@ -108,7 +108,9 @@ pub trait Photometry {
     /// luminance over the cone's solid angle (cd/m²), what a skylight panel of that field of
     /// view shows. Directions below the horizon contribute nothing. Computed by a 16-point
     /// Gauss-Legendre rule in the cosine of the angle from the axis and 32 azimuths; a black
-    /// cone gets D65's chromaticity.
+    /// cone gets D65's chromaticity. Accuracy against a brute-force f64 sum of the Preetham
+    /// sky: chromaticity within 3·10⁻⁶ and luminance within 2·10⁻⁶ for cones above the horizon,
+    /// 2.3·10⁻⁴ and 0.4 % for a cone the horizon cuts (tests hold 10⁻³ and 1 %).
     ///
     /// # Errors
     /// [`SkyError::NotFinite`] for a non-finite or zero axis, [`SkyError::OutOfRange`] for a

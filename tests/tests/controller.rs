@@ -164,6 +164,69 @@ fn preetham_illuminance_agrees_with_brute_force() {
     assert!(worst < 5e-3);
 }
 
+/// The mean colour over a cone of view against a brute-force f64 sum of the reference's XYZ
+/// over the cone's part of the sky (0.1° grid): chromaticity within 1e-3, mean luminance
+/// within 1 %.
+#[test]
+fn cone_mean_agrees_with_brute_force() {
+    let mut worst = (0.0f64, 0.0f64);
+    for (turbidity, zenith_deg, axis, half_deg) in [
+        (3.0, 40.0, [0.0, 0.0, 1.0], 30.0),
+        (2.0, 70.0, [0.6, 0.0, 0.8], 10.0),
+        (5.0, 20.0, [0.0, 1.0, 0.0], 45.0), // a window: half of its cone is ground
+    ] {
+        let reference = reference::Sky::new(turbidity, f64::to_radians(zenith_deg), 0.0);
+        let (rows, cols) = (900usize, 3600usize);
+        let (dt, dp) = (FRAC_PI_2 / rows as f64, 2.0 * PI / cols as f64);
+        let cos_half = f64::to_radians(half_deg).cos();
+        let mut sum = [0.0f64; 3];
+        for j in 0..rows {
+            let theta = (j as f64 + 0.5) * dt;
+            let omega = dp * ((theta - 0.5 * dt).cos() - (theta + 0.5 * dt).cos());
+            for i in 0..cols {
+                let phi = (i as f64 + 0.5) * dp;
+                let d = [
+                    theta.sin() * phi.cos(),
+                    theta.sin() * phi.sin(),
+                    theta.cos(),
+                ];
+                if d[0] * axis[0] + d[1] * axis[1] + d[2] * axis[2] >= cos_half {
+                    let xyz = reference::xyy_to_xyz(reference.xyy(d));
+                    for k in 0..3 {
+                        sum[k] += xyz[k] * omega;
+                    }
+                }
+            }
+        }
+        let total = sum[0] + sum[1] + sum[2];
+        let (want_x, want_y) = (sum[0] / total, sum[1] / total);
+        let want_lum = sum[1] / (2.0 * PI * (1.0 - cos_half));
+        #[allow(clippy::cast_possible_truncation)]
+        let sky = PreethamSky::new(
+            Sun::new(zenith_deg.to_radians() as f32, 0.0).expect("sun"),
+            turbidity as f32,
+        )
+        .expect("sky");
+        let got = sky
+            .cone_mean(as_vec3(axis), (half_deg as f32).to_radians())
+            .expect("cone");
+        let dxy = (f64::from(got.x) - want_x)
+            .abs()
+            .max((f64::from(got.y) - want_y).abs());
+        let dl = (f64::from(got.luminance) - want_lum).abs() / want_lum;
+        println!(
+            "cone {axis:?} {half_deg} deg: xy ({:.4}, {:.4}) vs ({want_x:.4}, {want_y:.4}), Y {:.0} vs {want_lum:.0}: |dxy| {dxy:.1e}, |dY|/Y {dl:.1e}",
+            got.x, got.y, got.luminance
+        );
+        worst = (worst.0.max(dxy), worst.1.max(dl));
+    }
+    println!(
+        "cone mean: max |dxy| {:.2e}, max |dY|/Y {:.2e}",
+        worst.0, worst.1
+    );
+    assert!(worst.0 < 1e-3 && worst.1 < 1e-2);
+}
+
 /// The same for the shipped neural sky, against a brute-force f64 sum of its own f32 values.
 #[test]
 fn neural_illuminance_agrees_with_brute_force() {
