@@ -3,7 +3,7 @@
 //! Computed by NREL's Solar Position Algorithm (SPA; Reda & Andreas, *Solar position algorithm
 //! for solar radiation applications*, Solar Energy 76(5), 2004) as implemented by the
 //! [`solar_positioning`] crate (pure Rust, `libm`, no allocation). SPA's stated uncertainty is
-//! ±0.0003° for the years −2000 to 6000; this crate accepts the years 1 to 3000, where ΔT
+//! ±0.0003° for the years −2000 to 6000; this crate accepts the years 1 to 2999, where ΔT
 //! (TT − UT) has an estimate (Espenak & Meeus polynomials, through the same crate). A test holds
 //! it within 0.01° of pvlib's independent SPA over dates 1950-2100 at polar, tropical and
 //! mid-latitude sites of both hemispheres. (Grena's algorithm 3 is faster but valid only for
@@ -49,14 +49,14 @@ pub fn days_in_month(year: i32, month: u32) -> u32 {
 impl UtcTime {
     /// The first year accepted.
     pub const MIN_YEAR: i32 = 1;
-    /// The last year accepted (the ΔT estimate's limit).
-    pub const MAX_YEAR: i32 = 3000;
+    /// The last year accepted (the ΔT estimate ends with the year 3000).
+    pub const MAX_YEAR: i32 = 2999;
 
     /// The instant `year-month-day hour:minute:second` UTC; `second` in `[0, 60)` (leap seconds
     /// are not represented).
     ///
     /// # Errors
-    /// [`SkyError::OutOfRange`] naming the first field outside its range (year 1-3000, month
+    /// [`SkyError::OutOfRange`] naming the first field outside its range (year 1-2999, month
     /// 1-12, day 1 to the month's length, hour 0-23, minute 0-59, second 0 to below 60).
     #[allow(clippy::cast_precision_loss)] // small integers, exact in f32
     pub fn new(
@@ -360,9 +360,22 @@ mod tests {
         assert!(UtcTime::new(2024, 1, 1, 24, 0, 0.0).is_err());
         assert!(UtcTime::new(2024, 1, 1, 0, 0, 60.0).is_err());
         assert!(UtcTime::new(2024, 1, 1, 0, 0, f64::NAN).is_err());
+        assert!(UtcTime::new(3000, 1, 1, 0, 0, 0.0).is_err());
         assert!(Site::new(90.5, 0.0, 0.0).is_err());
         assert!(Site::new(0.0, f64::NAN, 0.0).is_err());
         assert!(Site::new(0.0, 0.0, 1e5).is_err());
+    }
+
+    #[test]
+    fn every_accepted_instant_has_a_position() {
+        // The ends of the accepted years, the poles and the date line.
+        for (y, m, d, h) in [(1, 1, 1, 0), (2999, 12, 31, 23), (1582, 10, 10, 12)] {
+            for (lat, lon) in [(90.0, 180.0), (-90.0, -180.0), (0.0, 0.0)] {
+                let time = UtcTime::new(y, m, d, h, 59, 59.999).expect("valid");
+                let site = Site::new(lat, lon, 0.0).expect("valid");
+                assert!(SunPosition::new(&time, &site).is_ok(), "{time:?} {site:?}");
+            }
+        }
     }
 
     #[test]

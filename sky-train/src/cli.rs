@@ -84,7 +84,7 @@ pub struct ScheduleArgs {
     /// Longitude in degrees, east positive (-180 to 180).
     #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = longitude)]
     pub lon: f64,
-    /// The UTC date, YYYY-MM-DD (years 1 to 3000).
+    /// The UTC date, YYYY-MM-DD (years 1 to 2999).
     #[arg(long, value_name = "YYYY-MM-DD", value_parser = date)]
     pub date: (i32, u32, u32),
     /// Minutes between rows, from 00:00 UTC (1 to 1440).
