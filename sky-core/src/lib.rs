@@ -53,6 +53,32 @@
 //! # Ok::<(), sky_core::SkyError>(())
 //! ```
 //!
+//! # Lighting-controller outputs
+//!
+//! What a daylight-simulating luminaire needs every few seconds, without allocation:
+//!
+//! | what | where |
+//! |---|---|
+//! | the sun's position from UTC time and place (NREL SPA), as a [`Sun`] for any model | [`solar`] |
+//! | zenith luminance, horizontal and tilted-plane illuminance (lux), mean colour over a cone of view | [`photometry::Photometry`] |
+//! | correlated colour temperature and Duv (ANSI C78.377 sign) | [`cct`] |
+//! | the sky at any sun elevation, twilight and night included | [`twilight::Daylight`] |
+//! | LED channel levels (RGB, RGBW, warm + cool white), hue-keeping gamut clipping, PWM quantisation | [`led`] |
+//!
+//! ```
+//! use sky_core::solar::{Site, SunPosition, UtcTime};
+//! use sky_core::twilight::Daylight;
+//! use sky_core::Photometry;
+//!
+//! let site = Site::new(51.48, 0.0, 45.0)?;                       // Greenwich
+//! let sun = SunPosition::new(&UtcTime::new(2026, 3, 20, 16, 0, 0.0)?, &site)?;
+//! let sky = Daylight::new(sun.sun(), 3.0)?;
+//! let e = sky.horizontal_illuminance();                          // XYZ, Y in lux
+//! let cct = sky_core::cct::cct_duv(e.x / (e.x + e.y + e.z), e.y / (e.x + e.y + e.z))?;
+//! assert!(e.y > 1_000.0 && cct.kelvin > 5_000.0);
+//! # Ok::<(), sky_core::SkyError>(())
+//! ```
+//!
 //! # Features
 //!
 //! `sky-core` has no default features. Math goes through one private front: [`libm`] for what
@@ -73,17 +99,23 @@
 #![warn(missing_docs)]
 
 pub mod aoas;
+pub mod cct;
 pub mod color;
 mod error;
 pub mod geom;
+pub mod led;
 mod math;
 pub mod neural;
+pub mod photometry;
 pub mod preetham;
 pub mod sh;
+pub mod solar;
+pub mod twilight;
 
 pub use aoas::AoasSky;
 pub use error::SkyError;
 pub use geom::Sun;
 pub use glam::Vec3;
 pub use neural::NeuralSky;
+pub use photometry::Photometry;
 pub use preetham::PreethamSky;

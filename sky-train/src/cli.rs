@@ -57,6 +57,84 @@ pub enum Command {
     /// Fit a model's spherical-harmonics coefficients as polynomials in sun zenith and
     /// turbidity (seed 001) and write them as a Rust table for sky-core.
     FitSh(FitShArgs),
+    /// A lighting controller's day: every --step minutes of a UTC date, the sun's position
+    /// (NREL SPA), the clear sky's CCT, Duv and horizontal illuminance, and the levels of an
+    /// example RGBW luminaire, as CSV on stdout.
+    ///
+    /// Columns: utc (RFC 3339); sun_zenith_deg: the topocentric GEOMETRIC zenith angle (no
+    /// refraction; the sky models use it); sun_azimuth_deg: from north, clockwise, east = 90;
+    /// sun_elevation_deg = 90 - zenith; apparent_zenith_deg: refraction-corrected for 1013.25 hPa
+    /// and 15 C; cct_k and duv (CIE 1960 uv distance from the Planckian locus, positive above
+    /// it as in ANSI C78.377) of the horizontal illuminance; horizontal_lux: from the sky
+    /// alone (no direct sun, no ground), Preetham's model by day and a fitted twilight decay
+    /// below the horizon; red, green, blue, white: levels in [0, 1] of an RGBW luminaire (red
+    /// 300 lm at x,y 0.700,0.295; green 600 lm at 0.170,0.700; blue 100 lm at 0.135,0.060;
+    /// white 900 lm at 0.4369,0.4041) reproducing that colour, at full output at
+    /// --full-scale-lux.
+    Schedule(ScheduleArgs),
+    /// Read CIE 1931 `x,y` lines on stdin (a header line is allowed) and write
+    /// `x,y,cct_k,duv`: correlated colour temperature (1000-100000 K) and Duv (positive above
+    /// the Planckian locus, ANSI C78.377).
+    Cct,
+}
+
+/// `schedule`'s arguments.
+#[derive(Args)]
+pub struct ScheduleArgs {
+    /// Latitude in degrees, north positive (-90 to 90).
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = latitude)]
+    pub lat: f64,
+    /// Longitude in degrees, east positive (-180 to 180).
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = longitude)]
+    pub lon: f64,
+    /// The UTC date, YYYY-MM-DD (years 1 to 2999).
+    #[arg(long, value_name = "YYYY-MM-DD", value_parser = date)]
+    pub date: (i32, u32, u32),
+    /// Minutes between rows, from 00:00 UTC (1 to 1440).
+    #[arg(long, value_name = "MIN", default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=1440))]
+    pub step: u32,
+    /// Elevation of the site in metres above sea level (-500 to 10000).
+    #[arg(long, value_name = "M", default_value_t = 0.0, allow_negative_numbers = true, value_parser = elevation)]
+    pub elevation: f64,
+    /// Atmospheric turbidity of the clear sky (2 to 6).
+    #[arg(long, value_name = "T", default_value_t = 3.0, value_parser = schedule_turbidity)]
+    pub turbidity: f32,
+    /// Horizontal illuminance in lux at which the luminaire gives its full output (1 to 200000).
+    #[arg(long, value_name = "LUX", default_value_t = 10_000.0, value_parser = full_scale_lux)]
+    pub full_scale_lux: f32,
+}
+
+fn in_range(s: &str, min: f64, max: f64, what: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if (min..=max).contains(&v) => Ok(v),
+        _ => Err(format!("expected {what} in [{min}, {max}]")),
+    }
+}
+
+fn latitude(s: &str) -> Result<f64, String> {
+    in_range(s, -90.0, 90.0, "a latitude in degrees")
+}
+
+fn longitude(s: &str) -> Result<f64, String> {
+    in_range(s, -180.0, 180.0, "a longitude in degrees")
+}
+
+fn elevation(s: &str) -> Result<f64, String> {
+    in_range(s, -500.0, 10_000.0, "an elevation in metres")
+}
+
+#[allow(clippy::cast_possible_truncation)]
+fn schedule_turbidity(s: &str) -> Result<f32, String> {
+    in_range(s, 2.0, 6.0, "a turbidity").map(|v| v as f32)
+}
+
+#[allow(clippy::cast_possible_truncation)]
+fn full_scale_lux(s: &str) -> Result<f32, String> {
+    in_range(s, 1.0, 200_000.0, "an illuminance in lux").map(|v| v as f32)
+}
+
+fn date(s: &str) -> Result<(i32, u32, u32), String> {
+    crate::controller::parse_date(s).map_err(|e| e.0)
 }
 
 /// `fuzz-weights`' arguments.
@@ -481,6 +559,27 @@ pub fn execute(command: Command, input: &mut dyn BufRead, output: &mut dyn Write
             )?;
             Ok(())
         }
+        Command::Schedule(args) => {
+            let config = crate::controller::ScheduleConfig {
+                latitude: args.lat,
+                longitude: args.lon,
+                elevation: args.elevation,
+                date: args.date,
+                step_minutes: args.step,
+                turbidity: args.turbidity,
+                full_scale_lux: args.full_scale_lux,
+            };
+            let mut out = BufWriter::new(output);
+            crate::controller::schedule(&config, &mut out)?;
+            out.flush()?;
+            Ok(())
+        }
+        Command::Cct => {
+            let mut out = BufWriter::new(output);
+            crate::controller::cct_lines(input, &mut out)?;
+            out.flush()?;
+            Ok(())
+        }
         Command::Export(args) => {
             let weights = export::read_weights::<12>(&args.weights)?;
             let text = export::pretrained_source(&weights, &args.name, &args.weights);
@@ -506,10 +605,13 @@ fn render_to(source: &dyn sources::SkySource, image: &ImageArgs, out: &Path) -> 
     Ok(out.to_path_buf())
 }
 
-fn sample(args: &SkyArgs, input: &mut dyn BufRead, output: &mut dyn Write) -> Result<()> {
-    let source = args.source()?;
-    let mut rows: Vec<(String, String)> = Vec::new();
-    let mut dirs: Vec<Vec3> = Vec::new();
+/// The non-blank lines of `input` as (1-based line number, first field, second field), each
+/// line exactly two comma-separated fields named by `columns` (e.g. `x,y`) in the error.
+pub(crate) fn stdin_pairs(
+    input: &mut dyn BufRead,
+    columns: &str,
+) -> Result<Vec<(usize, String, String)>> {
+    let mut pairs = Vec::new();
     for (n, line) in input.lines().enumerate() {
         let line = line.context("cannot read stdin")?;
         let line = line.trim();
@@ -517,27 +619,30 @@ fn sample(args: &SkyArgs, input: &mut dyn BufRead, output: &mut dyn Write) -> Re
             continue;
         }
         let mut fields = line.split(',').map(str::trim);
-        let (Some(z), Some(a), None) = (fields.next(), fields.next(), fields.next()) else {
-            bail!(
-                "stdin line {}: expected `view_zenith_deg,view_azimuth_deg`, got `{line}`",
-                n + 1
-            );
+        let (Some(a), Some(b), None) = (fields.next(), fields.next(), fields.next()) else {
+            bail!("stdin line {}: expected `{columns}`, got `{line}`", n + 1);
         };
+        pairs.push((n + 1, a.to_owned(), b.to_owned()));
+    }
+    Ok(pairs)
+}
+
+fn sample(args: &SkyArgs, input: &mut dyn BufRead, output: &mut dyn Write) -> Result<()> {
+    let source = args.source()?;
+    let mut rows: Vec<(String, String)> = Vec::new();
+    let mut dirs: Vec<Vec3> = Vec::new();
+    for (n, z, a) in stdin_pairs(input, "view_zenith_deg,view_azimuth_deg")? {
         match (z.parse::<f64>(), a.parse::<f64>()) {
             (Ok(zv), Ok(av)) if zv.is_finite() && av.is_finite() => {
                 if !(0.0..=180.0).contains(&zv) {
-                    bail!(
-                        "stdin line {}: view_zenith_deg = {zv} is outside [0, 180]",
-                        n + 1
-                    );
+                    bail!("stdin line {n}: view_zenith_deg = {zv} is outside [0, 180]");
                 }
                 dirs.push(geom::direction(sources::radians(zv), sources::radians(av)));
-                rows.push((z.to_owned(), a.to_owned()));
+                rows.push((z, a));
             }
-            _ if rows.is_empty() && n == 0 => {} // a header line
+            _ if rows.is_empty() && n == 1 => {} // a header line
             _ => bail!(
-                "stdin line {}: view_zenith_deg and view_azimuth_deg must be finite numbers, got `{line}`",
-                n + 1
+                "stdin line {n}: view_zenith_deg and view_azimuth_deg must be finite numbers, got `{z},{a}`"
             ),
         }
     }

@@ -4,6 +4,7 @@
 
 pub mod bench;
 pub mod cli;
+pub mod controller;
 pub mod dispatch;
 pub mod eval;
 pub mod export;

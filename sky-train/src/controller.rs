@@ -1,0 +1,156 @@
+//! The lighting controller's day on the host: `sky-train schedule` (sun, colour temperature,
+//! illuminance and RGBW levels every few minutes of a day) and `sky-train cct` (CCT and Duv of
+//! chromaticities), both through sky-core, so the firmware computes the same values.
+
+use std::io::{BufRead, Write};
+
+use anyhow::{Context, Result, bail};
+use sky_core::color::Xyy;
+use sky_core::led::{Channel, Luminaire};
+use sky_core::photometry::Photometry;
+use sky_core::solar::{Site, SunPosition, UtcTime};
+use sky_core::twilight::Daylight;
+use sky_core::{Vec3, cct};
+
+use crate::sources::ParamError;
+
+/// The example RGBW luminaire of the schedule: typical LED chromaticities (red 625 nm, green
+/// 525 nm, royal blue 450 nm, a 3000 K white) and outputs in lumens.
+pub fn example_luminaire() -> Result<Luminaire<4>> {
+    let ch = |x, y, full_output| Channel { x, y, full_output };
+    Ok(Luminaire::rgbw(
+        ch(0.700, 0.295, 300.0),
+        ch(0.170, 0.700, 600.0),
+        ch(0.135, 0.060, 100.0),
+        ch(0.4369, 0.4041, 900.0),
+    )?)
+}
+
+/// What `schedule` needs.
+#[derive(Debug, Clone, Copy)]
+pub struct ScheduleConfig {
+    /// Latitude, degrees north.
+    pub latitude: f64,
+    /// Longitude, degrees east.
+    pub longitude: f64,
+    /// Elevation, metres.
+    pub elevation: f64,
+    /// The UTC date (year, month, day).
+    pub date: (i32, u32, u32),
+    /// Minutes between rows (1 to 1440).
+    pub step_minutes: u32,
+    /// Preetham turbidity (2 to 6).
+    pub turbidity: f32,
+    /// The horizontal illuminance (lux) at which the luminaire gives its full output.
+    pub full_scale_lux: f32,
+}
+
+/// The CSV header of `schedule`.
+pub const SCHEDULE_HEADER: &str = "utc,sun_zenith_deg,sun_azimuth_deg,sun_elevation_deg,apparent_zenith_deg,cct_k,duv,horizontal_lux,red,green,blue,white";
+
+/// Parses `YYYY-MM-DD` into a valid calendar date.
+///
+/// # Errors
+/// A [`ParamError`] naming `--date` and the expected form or the field out of range.
+pub fn parse_date(s: &str) -> Result<(i32, u32, u32), ParamError> {
+    let bad = || {
+        ParamError(format!(
+            "--date `{s}`: expected YYYY-MM-DD, e.g. 2026-06-21"
+        ))
+    };
+    let mut parts = s.trim().split('-');
+    let (Some(y), Some(m), Some(d), None) =
+        (parts.next(), parts.next(), parts.next(), parts.next())
+    else {
+        return Err(bad());
+    };
+    if y.len() != 4 || m.len() != 2 || d.len() != 2 {
+        return Err(bad());
+    }
+    let (Ok(y), Ok(m), Ok(d)) = (y.parse::<i32>(), m.parse::<u32>(), d.parse::<u32>()) else {
+        return Err(bad());
+    };
+    UtcTime::new(y, m, d, 0, 0, 0.0).map_err(|e| ParamError(format!("--date {s}: {e}")))?;
+    Ok((y, m, d))
+}
+
+/// Writes the schedule of one UTC day as CSV ([`SCHEDULE_HEADER`]): one row every
+/// `step_minutes` from 00:00 UTC.
+///
+/// # Errors
+/// Bad parameters as a [`ParamError`]; a failed write.
+pub fn schedule(config: &ScheduleConfig, output: &mut dyn Write) -> Result<()> {
+    let site = Site::new(config.latitude, config.longitude, config.elevation)
+        .map_err(|e| ParamError(format!("--lat/--lon/--elevation: {e}")))?;
+    let lamp = example_luminaire()?;
+    let full_output: f32 = lamp.channels().iter().map(|c| c.full_output).sum();
+    let (year, month, day) = config.date;
+    writeln!(output, "{SCHEDULE_HEADER}")?;
+    let mut minute = 0u32;
+    while minute < 24 * 60 {
+        let (hour, min) = (minute / 60, minute % 60);
+        let time = UtcTime::new(year, month, day, hour, min, 0.0)
+            .map_err(|e| ParamError(format!("--date: {e}")))?;
+        let sun = SunPosition::new(&time, &site)?;
+        let sky = Daylight::new(sun.sun(), config.turbidity)
+            .map_err(|e| ParamError(format!("--turbidity: {e}")))?;
+        let e = sky.horizontal_illuminance();
+        let colour = chromaticity(e);
+        let c = cct::cct_duv(colour.x, colour.y).with_context(|| {
+            format!("CCT of the sky at {year:04}-{month:02}-{day:02}T{hour:02}:{min:02}")
+        })?;
+        let target = Xyy {
+            luminance: full_output * e.y / config.full_scale_lux,
+            ..colour
+        };
+        let levels = lamp.drive(target).levels;
+        writeln!(
+            output,
+            "{year:04}-{month:02}-{day:02}T{hour:02}:{min:02}:00Z,{:.5},{:.5},{:.5},{:.5},{:.2},{:.6},{:.6e},{:.6},{:.6},{:.6},{:.6}",
+            sun.zenith_deg(),
+            sun.azimuth_deg(),
+            sun.elevation_deg(),
+            sun.apparent_zenith_deg(),
+            c.kelvin,
+            c.duv,
+            e.y,
+            levels[0],
+            levels[1],
+            levels[2],
+            levels[3],
+        )?;
+        minute += config.step_minutes;
+    }
+    Ok(())
+}
+
+fn chromaticity(xyz: Vec3) -> Xyy {
+    sky_core::color::xyz_to_xyy(xyz)
+}
+
+/// Reads `x,y` lines (a header line is allowed; blank lines are skipped) and writes
+/// `x,y,cct_k,duv`.
+///
+/// # Errors
+/// A line that is not two numbers, or a chromaticity without a CCT, named by its line number.
+pub fn cct_lines(input: &mut dyn BufRead, output: &mut dyn Write) -> Result<()> {
+    writeln!(output, "x,y,cct_k,duv")?;
+    for (n, x, y) in crate::cli::stdin_pairs(input, "x,y")? {
+        let (xv, yv) = match (x.parse::<f32>(), y.parse::<f32>()) {
+            (Ok(a), Ok(b)) => (a, b),
+            _ if n == 1 => continue, // a header line
+            _ => bail!(
+                "stdin line {n}: x and y must be numbers (CIE 1931 chromaticity), got `{x},{y}`"
+            ),
+        };
+        let c = cct::cct_duv(xv, yv).map_err(|e| {
+            ParamError(format!(
+                "stdin line {n}: {e} (x in [0, 1], y in (0, 1], CCT {}-{} K)",
+                cct::MIN_CCT,
+                cct::MAX_CCT
+            ))
+        })?;
+        writeln!(output, "{x},{y},{:.3},{:.7}", c.kelvin, c.duv)?;
+    }
+    Ok(())
+}

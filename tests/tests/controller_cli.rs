@@ -1,0 +1,168 @@
+//! `sky-train schedule` and `sky-train cct` against pvlib's SPA and colour-science (fixtures
+//! written by `tests/reference/gen_fixtures.py`), driven in-process through
+//! `sky_train::cli::execute`, and their errors for bad input.
+
+use std::collections::BTreeMap;
+
+use clap::Parser;
+use sky_tests::fixtures::{self, num};
+use sky_train::cli::{self, Cli};
+
+fn parse(args: &[&str]) -> Result<Cli, clap::Error> {
+    Cli::try_parse_from(std::iter::once("sky-train").chain(args.iter().copied()))
+}
+
+/// Runs a command line with `input` on stdin: stdout, or the error's text.
+fn run(args: &[&str], input: &str) -> Result<String, String> {
+    let cli = parse(args).map_err(|e| e.to_string())?;
+    let mut output = Vec::new();
+    cli::execute(cli.command, &mut input.as_bytes(), &mut output).map_err(|e| format!("{e:#}"))?;
+    Ok(String::from_utf8(output).expect("UTF-8"))
+}
+
+/// Three whole days (polar summer, southern mid-latitude, equatorial) against pvlib's SPA at
+/// every row: sun zenith and azimuth within 0.01°; RFC 3339 times; levels in [0, 1]; CCT and
+/// illuminance finite, illuminance rising with the sun's elevation from -18°.
+#[test]
+fn schedule_matches_spa_and_is_consistent() {
+    let mut runs: BTreeMap<(String, String, String, String), Vec<Vec<String>>> = BTreeMap::new();
+    for r in fixtures::rows("spa_schedule.csv") {
+        runs.entry((r[0].clone(), r[1].clone(), r[2].clone(), r[3].clone()))
+            .or_default()
+            .push(r);
+    }
+    assert_eq!(runs.len(), 3);
+    let (mut zenith, mut azimuth) = (0.0f64, 0.0f64);
+    for ((lat, lon, date, step), want) in &runs {
+        let csv = run(
+            &[
+                "schedule", "--lat", lat, "--lon", lon, "--date", date, "--step", step,
+            ],
+            "",
+        )
+        .expect("schedule runs");
+        let mut lines = csv.lines();
+        let header: Vec<&str> = lines.next().expect("header").split(',').collect();
+        assert_eq!(
+            &header[..8],
+            [
+                "utc",
+                "sun_zenith_deg",
+                "sun_azimuth_deg",
+                "sun_elevation_deg",
+                "apparent_zenith_deg",
+                "cct_k",
+                "duv",
+                "horizontal_lux"
+            ]
+        );
+        assert_eq!(&header[8..], ["red", "green", "blue", "white"]);
+        let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+        assert_eq!(rows.len(), want.len());
+        let mut by_elevation = Vec::new();
+        for (got, want) in rows.iter().zip(want) {
+            assert_eq!(got[0], want[4], "RFC 3339 UTC time");
+            zenith = zenith.max((num(got[1]) - num(&want[5])).abs());
+            let da = (num(got[2]) - num(&want[6]) + 540.0).rem_euclid(360.0) - 180.0;
+            azimuth = azimuth.max(da.abs() * num(&want[5]).to_radians().sin());
+            let values: Vec<f64> = got[1..].iter().map(|v| num(v)).collect();
+            assert!(values.iter().all(|v| v.is_finite()), "{got:?}");
+            assert!(
+                values[7..].iter().all(|l| (0.0..=1.0).contains(l)),
+                "{got:?}"
+            );
+            assert!((1_000.0..=100_000.0).contains(&values[4]), "{got:?}");
+            // Below -18° the night floor is constant (up to rounding that varies with the
+            // sun's azimuth): monotone from -18° up.
+            if values[2] >= -18.0 {
+                by_elevation.push((values[2], values[6]));
+            }
+        }
+        by_elevation.sort_by(|a, b| a.0.total_cmp(&b.0));
+        assert!(
+            by_elevation.windows(2).all(|w| w[1].1 >= w[0].1),
+            "illuminance falls as the sun rises: {by_elevation:?}"
+        );
+    }
+    println!("schedule vs pvlib SPA: max |dzenith| {zenith:.2e} deg, |dazimuth| {azimuth:.2e} deg");
+    assert!(zenith < 0.01 && azimuth < 0.01);
+}
+
+/// `cct` on colour-science's chromaticities: the same bounds as sky-core's (2 K below 10,000 K,
+/// 0.1 % above, Duv 1e-4), the input echoed.
+#[test]
+fn cct_command_matches_colour_science() {
+    let rows = fixtures::rows("cct.csv");
+    let input: String = std::iter::once("x,y\n".to_owned())
+        .chain(rows.iter().map(|r| format!("{},{}\n", r[0], r[1])))
+        .collect();
+    let csv = run(&["cct"], &input).expect("cct runs");
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("x,y,cct_k,duv"));
+    let mut n = 0;
+    for (line, want) in lines.zip(&rows) {
+        let got: Vec<&str> = line.split(',').collect();
+        assert_eq!((got[0], got[1]), (want[0].as_str(), want[1].as_str()));
+        let (t, wt) = (num(got[2]), num(&want[2]));
+        let bound = if wt < 10_000.0 { 2.0 } else { 1e-3 * wt };
+        assert!((t - wt).abs() <= bound, "{line} vs {want:?}");
+        assert!(
+            (num(got[3]) - num(&want[3])).abs() <= 1e-4,
+            "{line} vs {want:?}"
+        );
+        n += 1;
+    }
+    assert_eq!(n, rows.len());
+}
+
+/// Latitude, longitude, date, further arguments, and what the error must contain.
+type BadSchedule<'a> = (&'a str, &'a str, &'a str, &'a [&'a str], [&'a str; 2]);
+
+/// Bad input: one clear error naming the parameter and its valid range.
+#[test]
+fn bad_input_names_the_parameter() {
+    let cases: [BadSchedule; 8] = [
+        ("95", "0", "2026-01-01", &[], ["--lat", "[-90, 90]"]),
+        ("0", "-181", "2026-01-01", &[], ["--lon", "[-180, 180]"]),
+        ("0", "0", "2026-13-01", &[], ["--date", "month"]),
+        ("0", "0", "2025-02-29", &[], ["--date", "[1, 28]"]),
+        ("0", "0", "21.6.2026", &[], ["--date", "YYYY-MM-DD"]),
+        (
+            "0",
+            "0",
+            "2026-01-01",
+            &["--step", "0"],
+            ["--step", "1..=1440"],
+        ),
+        (
+            "0",
+            "0",
+            "2026-01-01",
+            &["--step", "2000"],
+            ["--step", "1..=1440"],
+        ),
+        (
+            "0",
+            "0",
+            "2026-01-01",
+            &["--turbidity", "9"],
+            ["--turbidity", "[2, 6]"],
+        ),
+    ];
+    for (lat, lon, date, extra, needles) in cases {
+        let mut args = vec!["schedule", "--lat", lat, "--lon", lon, "--date", date];
+        args.extend_from_slice(extra);
+        let e = run(&args, "").expect_err("rejected");
+        for needle in needles {
+            assert!(e.contains(needle), "{args:?}: `{e}` lacks `{needle}`");
+        }
+    }
+    for (input, needle) in [
+        ("0.31,0.33\n0.3;0.3\n", "x,y"),
+        ("0.31,0.33\n0.9,0.05\n", "1000"),
+        ("0.31,0.33\n0.3,x\n", "numbers"),
+    ] {
+        let e = run(&["cct"], input).expect_err("rejected");
+        assert!(e.contains("stdin line 2") && e.contains(needle), "{e}");
+    }
+}
