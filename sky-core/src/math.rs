@@ -47,6 +47,12 @@ pub(crate) fn floor(x: f32) -> f32 {
     libm::floorf(x)
 }
 
+/// `x` rounded to the nearest integer, ties to even (f64: for fixed-point conversion).
+#[inline]
+pub(crate) fn rint64(x: f64) -> f64 {
+    libm::rint(x)
+}
+
 /// 1.5 · 2²³: adding and subtracting it rounds an f32 of magnitude below 2²² to the nearest
 /// integer (ties to even), and leaves that integer in the low mantissa bits.
 const ROUND_MAGIC: f32 = 12_582_912.0;
