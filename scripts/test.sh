@@ -3,7 +3,8 @@
 #   host:  fmt, clippy (-D warnings), rustdoc (-D warnings), all workspace tests and doctests,
 #          20 s of fuzzing the neural weight-file decoder
 #   cross: sky-core for thumbv7em / riscv32imac / wasm32 without std or alloc, and the firmware
-#          example under qemu (Cortex-M4F) checked against host-computed values
+#          examples under qemu (Cortex-M4F; fixed point on Cortex-M3 and M0) checked against
+#          host-computed values
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
