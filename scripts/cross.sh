@@ -47,18 +47,24 @@ for target in "${targets[@]}"; do target_args+=(--target "$target"); done
 
 # Each run: target, board (qemu machine and CPU), binary. The target picks the board's memory
 # map in firmware/build.rs; every binary checks its values against the host's and exits 0 or 1.
+# A fourth field names firmware features: the micromath build goes to its own target folder,
+# for its size next to the default one (README, "Without an FPU").
 runs=(
-  "thumbv7em-none-eabihf mps2-an386 cortex-m4 sky-firmware"  # Preetham and neural in f32
-  "thumbv7m-none-eabi lm3s6965evb cortex-m3 fixed-neural"    # fixed-point neural, no FPU
-  "thumbv6m-none-eabi microbit cortex-m0 fixed-neural"       # fixed-point neural, ARMv6-M
+  "thumbv7em-none-eabihf mps2-an386 cortex-m4 sky-firmware"            # Preetham and neural, f32
+  "thumbv7em-none-eabihf mps2-an386 cortex-m4 sky-firmware micromath"  # the same, micromath
+  "thumbv7m-none-eabi lm3s6965evb cortex-m3 fixed-neural"              # fixed-point neural
+  "thumbv6m-none-eabi microbit cortex-m0 fixed-neural"                 # fixed-point, ARMv6-M
 )
 for run in "${runs[@]}"; do
-  read -r target machine cpu bin <<<"$run"
-  elf="$target_dir/$target/release/$bin"
+  read -r target machine cpu bin features <<<"$run"
+  features=${features:-}
+  dir=$target_dir${features:+-$features}
+  elf="$dir/$target/release/$bin"
 
-  step "firmware: build $bin for $target ($machine)"
+  step "firmware: build $bin for $target ($machine)${features:+ with $features}"
   # Run from firmware/, so that firmware/.cargo/config.toml is found.
-  (cd "$root/firmware" && cargo build --release --locked --target "$target" --bin "$bin")
+  (cd "$root/firmware" && cargo build --release --locked --target "$target" --bin "$bin" \
+    --target-dir "$dir" ${features:+--features "$features"})
 
   step "firmware: size of $bin on $machine (text = flash: vectors, code, constants; data + bss = static RAM)"
   if command -v llvm-size >/dev/null; then
