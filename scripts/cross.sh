@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Cross-target checks: sky-core builds without std or alloc for a Cortex-M4F, a RISC-V
-# microcontroller and wasm32, and the firmware example agrees with the host under qemu.
+# microcontroller and wasm32, and the firmware examples agree with the host under qemu: the f32
+# skies on a Cortex-M4F (mps2-an386), the fixed-point neural sky on a Cortex-M3 (lm3s6965evb)
+# and a Cortex-M0 (microbit).
 #
 # Uses Debian's rustc-web with -Zbuild-std (shared/DESIGN.md, "Toolchains"); the settings live in
 # scripts/cross/config.toml (workspace builds) and firmware/.cargo/config.toml (the firmware).
@@ -43,25 +45,45 @@ for target in "${targets[@]}"; do target_args+=(--target "$target"); done
 (cd "$root" && cargo build -p sky-core --lib --release "${target_args[@]}" \
   --config "$cross_config" --target-dir "$target_dir")
 
-step "firmware: build for thumbv7em-none-eabihf (mps2-an386)"
-# Run from firmware/, so that firmware/.cargo/config.toml is found.
-(cd "$root/firmware" && cargo build --release --locked)
-elf="$target_dir/thumbv7em-none-eabihf/release/sky-firmware"
+# Each run: target, board (qemu machine and CPU), binary. The target picks the board's memory
+# map in firmware/build.rs; every binary checks its values against the host's and exits 0 or 1.
+# A fourth field names firmware features: the micromath build goes to its own target folder,
+# for its size next to the default one (README, "Without an FPU").
+runs=(
+  "thumbv7em-none-eabihf mps2-an386 cortex-m4 sky-firmware"            # Preetham and neural, f32
+  "thumbv7em-none-eabihf mps2-an386 cortex-m4 sky-firmware micromath"  # the same, micromath
+  "thumbv7m-none-eabi lm3s6965evb cortex-m3 fixed-neural"              # fixed-point neural
+  "thumbv6m-none-eabi microbit cortex-m0 fixed-neural"                 # fixed-point, ARMv6-M
+)
+for run in "${runs[@]}"; do
+  read -r target machine cpu bin features <<<"$run"
+  features=${features:-}
+  dir=$target_dir${features:+-$features}
+  elf="$dir/$target/release/$bin"
 
-step "firmware: size (text = flash: vectors, code, constants; data + bss = static RAM)"
-if command -v llvm-size >/dev/null; then
-  llvm-size "$elf"
-else
-  readelf -S --wide "$elf" | grep -E '\.(vector_table|text|rodata|data|bss) '
-fi
+  step "firmware: build $bin for $target ($machine)${features:+ with $features}"
+  # Run from firmware/, so that firmware/.cargo/config.toml is found.
+  (cd "$root/firmware" && cargo build --release --locked --target "$target" --bin "$bin" \
+    --target-dir "$dir" ${features:+--features "$features"})
 
-step "firmware: run under qemu (mps2-an386, Cortex-M4F)"
-status=0
-timeout 120 "$qemu" -machine mps2-an386 -cpu cortex-m4 -nographic \
-  -semihosting-config enable=on,target=native -kernel "$elf" || status=$?
-if [ "$status" -ne 0 ]; then
-  [ "$status" -eq 124 ] && echo "FAIL: qemu timed out after 120 s" >&2
-  echo "FAIL: firmware exited with status $status" >&2
-  exit 1
-fi
+  step "firmware: size of $bin on $machine (text = flash: vectors, code, constants; data + bss = static RAM)"
+  if command -v llvm-size >/dev/null; then
+    llvm-size "$elf"
+  else
+    readelf -S --wide "$elf" | grep -E '\.(vector_table|text|rodata|data|bss) '
+  fi
+
+  step "firmware: run $bin under qemu ($machine, $cpu)"
+  # The microbit machine has its one CPU built in (qemu refuses -cpu there).
+  cpu_args=(-cpu "$cpu")
+  [ "$machine" = microbit ] && cpu_args=()
+  status=0
+  timeout 120 "$qemu" -machine "$machine" "${cpu_args[@]}" -nographic \
+    -semihosting-config enable=on,target=native -kernel "$elf" || status=$?
+  if [ "$status" -ne 0 ]; then
+    [ "$status" -eq 124 ] && echo "FAIL: qemu timed out after 120 s" >&2
+    echo "FAIL: $bin on $machine exited with status $status" >&2
+    exit 1
+  fi
+done
 echo "cross: all passed"

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # The one test command (README, CI): installs what the project needs, then runs every check.
 #   host:  fmt, clippy (-D warnings), rustdoc (-D warnings), all workspace tests and doctests,
+#          the micromath accuracy test with sky-core's `micromath` feature on,
 #          20 s of fuzzing the neural weight-file decoder
 #   cross: sky-core for thumbv7em / riscv32imac / wasm32 without std or alloc, and the firmware
-#          example under qemu (Cortex-M4F) checked against host-computed values
+#          examples under qemu (Cortex-M4F; fixed point on Cortex-M3 and M0) checked against
+#          host-computed values
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
@@ -24,6 +26,9 @@ RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --quiet
 
 step "cargo test (workspace: unit, integration, doc tests)"
 cargo test --workspace --locked
+
+step "sky-core's micromath feature: each model's error against its f64 reference"
+cargo test --locked -p sky-tests --features micromath --test micromath
 
 step "fuzz the weight-file decoder (bounded time)"
 cargo run --release --locked -q -p sky-train -- fuzz-weights --seconds 20

@@ -10,10 +10,8 @@
 #![no_std]
 #![no_main]
 
-use core::panic::PanicInfo;
-
-use cortex_m_rt::{ExceptionFrame, entry, exception};
-use cortex_m_semihosting::{debug, heprintln, hprintln};
+use cortex_m_rt::entry;
+use cortex_m_semihosting::hprintln;
 use sky_core::neural::{NeuralSky, pretrained};
 use sky_core::{PreethamSky, SkyError, Sun, geom};
 
@@ -169,32 +167,5 @@ fn main() -> ! {
         CASES.len()
     );
     failures += sh::check_all();
-    debug::exit(if failures == 0 {
-        debug::EXIT_SUCCESS
-    } else {
-        debug::EXIT_FAILURE
-    });
-    halt()
-}
-
-/// Waits forever (reached only if the debugger resumes after an exit request).
-fn halt() -> ! {
-    loop {
-        cortex_m::asm::wfi();
-    }
-}
-
-#[panic_handler]
-fn panic(info: &PanicInfo) -> ! {
-    heprintln!("panic: {}", info);
-    debug::exit(debug::EXIT_FAILURE);
-    halt()
-}
-
-/// Reports a fault and fails, instead of hanging until qemu's timeout.
-#[exception]
-unsafe fn HardFault(frame: &ExceptionFrame) -> ! {
-    heprintln!("hard fault: {:?}", frame);
-    debug::exit(debug::EXIT_FAILURE);
-    halt()
+    qemu_check::finish(failures == 0)
 }

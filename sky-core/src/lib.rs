@@ -84,8 +84,21 @@
 //! `sky-core` has no default features. Math goes through one private front: [`libm`] for what
 //! is computed once per sky, and branch-free polynomial kernels (exp, atan2, 1/√x, √x; errors
 //! of a few ulp, stated and tested) for what is computed per direction, so that loops over
-//! directions vectorise. Fixed-capacity collections (AOAS cloud shapes) are [`heapless`]'s. Results are identical, bit for bit, on every target (the firmware
-//! example checks this on a Cortex-M4F).
+//! directions vectorise. Fixed-capacity collections (AOAS cloud shapes) are [`heapless`]'s.
+//! Results are identical, bit for bit, on every target (the firmware example checks this on a
+//! Cortex-M4F).
+//!
+//! * **`micromath`** (off by default; enable it only in a final binary, such as firmware, never
+//!   in a library): sin, cos, tan, atan2 and floor (run once per sky, and in [`geom`]'s
+//!   angle conversions) come from the
+//!   `micromath` crate instead of libm, for less flash (7.7 KB less in the Cortex-M4F firmware
+//!   example) at a cost in accuracy, against the f64 references: Preetham 1.0e-2 relative per
+//!   channel (libm: 4.3e-6), neural 1.7e-2 (libm: 8.2e-4), AOAS 1.1e-2 more than 10° from the
+//!   sun but up to 0.53 within 2-10° of it (libm: 1.2e-4), held by `tests/tests/micromath.rs`.
+//!   Per-direction code is the same in both builds.
+//!
+//! Parts without an FPU evaluate the neural sky in integers with
+//! [`neural::FixedNeuralSky`] (the firmware checks it on a Cortex-M3 and a Cortex-M0).
 //!
 //! # Batch evaluation
 //!

@@ -8,7 +8,7 @@ use anyhow::Result;
 use sky_core::aoas::{AoasSky, Preset, Scattering, Style};
 use sky_core::color::{self, Xyy};
 use sky_core::geom::{Equirect, Extent};
-use sky_core::neural::{NeuralSky, pretrained};
+use sky_core::neural::{FixedNeuralSky, NeuralSky, fixed, pretrained};
 use sky_core::preetham::PerezCoefficients;
 use sky_core::sh::{PREETHAM, ShSky};
 use sky_core::{PreethamSky, Sun, Vec3};
@@ -172,12 +172,29 @@ fn neural(dirs: &[Vec3], runs: usize, results: &mut Vec<Measurement>) -> Result<
             }
         },
     );
-    m(
+    let scalar = m(
         "neural 6-12-3 rgb, one direction a call",
         Some(peer),
         &mut |d, o| {
             for (o, d) in o.iter_mut().zip(d) {
                 *o = sky.rgb(black_box(*d));
+            }
+        },
+    );
+    // The fixed-point sky, against the f32 one a direction at a time: integer directions are
+    // made before timing, as firmware would hold them.
+    let fixed_sky = FixedNeuralSky::new(&pretrained::PREETHAM_FIXED, Sun::new(0.9, 0.3)?, 3.0)?;
+    let fixed_dirs: Vec<[i16; 3]> = dirs.iter().map(|&d| fixed::direction_q15(d)).collect();
+    m(
+        "neural fixed point (Q7.24, integer only) rgb",
+        Some(scalar),
+        &mut |_, o| {
+            for (o, d) in o.iter_mut().zip(&fixed_dirs) {
+                let [r, g, b] = fixed_sky.rgb(black_box(*d));
+                #[allow(clippy::cast_precision_loss)] // kept only so the work is not dropped
+                {
+                    *o = Vec3::new(r as f32, g as f32, b as f32);
+                }
             }
         },
     );

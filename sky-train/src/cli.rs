@@ -174,6 +174,19 @@ pub struct ExportArgs {
     /// The Rust file to write (atomically).
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
+    /// What to write: the f32 weights (`NeuralWeights`, for `NeuralSky`) or the weights
+    /// quantised to Q7.24 (`FixedNeuralWeights`, for `FixedNeuralSky` on parts without an FPU).
+    #[arg(long, value_enum, default_value_t = ExportFormat::F32)]
+    pub format: ExportFormat,
+}
+
+/// `export --format`.
+#[derive(Clone, Copy, ValueEnum)]
+pub enum ExportFormat {
+    /// `NeuralWeights<12>` in f32.
+    F32,
+    /// `FixedNeuralWeights<12>` in Q7.24.
+    Fixed,
 }
 
 /// `train`'s arguments.
@@ -582,7 +595,12 @@ pub fn execute(command: Command, input: &mut dyn BufRead, output: &mut dyn Write
         }
         Command::Export(args) => {
             let weights = export::read_weights::<12>(&args.weights)?;
-            let text = export::pretrained_source(&weights, &args.name, &args.weights);
+            let text = match args.format {
+                ExportFormat::F32 => export::pretrained_source(&weights, &args.name, &args.weights),
+                ExportFormat::Fixed => {
+                    export::pretrained_fixed_source(&weights, &args.name, &args.weights)?
+                }
+            };
             image_io::write_text(&args.out, &text)?;
             writeln!(output, "wrote {}", args.out.display())?;
             Ok(())

@@ -29,6 +29,7 @@
 //! sky (turbidity 2-6) and the Hosek-Wilkie sky (turbidity 1-10, ground albedo 0.5); their
 //! accuracy on the paper's test protocol is in each constant's docs.
 
+pub mod fixed;
 pub mod pretrained;
 pub mod weights;
 
@@ -38,12 +39,50 @@ use crate::error::{SkyError, check_range};
 use crate::geom::Sun;
 use crate::math;
 
+pub use fixed::{FixedNeuralSky, FixedNeuralWeights};
 pub use weights::{NeuralWeights, WeightsError};
 
 /// Number of network inputs: √t, θ_sun, v_x, v_y, v_z, d.
 pub const INPUTS: usize = 6;
 /// Number of network outputs: linear R, G, B.
 pub const OUTPUTS: usize = 3;
+
+/// The network inputs that depend only on the sky, and eq. 10's rotation, checked against the
+/// trained domain: shared by [`NeuralSky`] and [`FixedNeuralSky`].
+struct SkyInputs {
+    /// √t (0 for networks without a turbidity input).
+    sqrt_t: f32,
+    /// The sun's zenith angle.
+    theta_s: f32,
+    /// Sine and cosine of eq. 10's rotation −(φ_sun − π) about z, which puts the sun at
+    /// azimuth π.
+    sin_r: f32,
+    cos_r: f32,
+}
+
+impl SkyInputs {
+    /// `turbidity` is the turbidity and its trained range, or `None` for networks without it.
+    fn new(
+        sun_zenith_range: (f32, f32),
+        turbidity: Option<(f32, (f32, f32))>,
+        sun: Sun,
+    ) -> Result<Self, SkyError> {
+        let (zmin, zmax) = sun_zenith_range;
+        let theta_s = check_range("sun zenith [rad]", sun.zenith(), zmin, zmax)?;
+        let sqrt_t = match turbidity {
+            Some((t, (tmin, tmax))) => math::sqrt(check_range("turbidity", t, tmin, tmax)?),
+            None => 0.0,
+        };
+        // Eq. 10: the view is rotated by −(φ_sun − π) about z, so that the sun's azimuth is π.
+        let rotate = sun.azimuth() - core::f32::consts::PI;
+        Ok(Self {
+            sqrt_t,
+            theta_s,
+            sin_r: math::sin(rotate),
+            cos_r: math::cos(rotate),
+        })
+    }
+}
 
 /// The neural sky for one sun position and turbidity, with `H` hidden neurons (12 by default).
 ///
@@ -86,17 +125,18 @@ impl<const H: usize> NeuralSky<H> {
     /// [`SkyError::OutOfRange`] for a sun zenith or turbidity outside the trained ranges (or
     /// NaN).
     pub fn new(weights: &NeuralWeights<H>, sun: Sun, turbidity: f32) -> Result<Self, SkyError> {
-        let (zmin, zmax) = weights.sun_zenith_range;
-        let theta_s = check_range("sun zenith [rad]", sun.zenith(), zmin, zmax)?;
-        let sqrt_t = if weights.uses_turbidity {
-            let (tmin, tmax) = weights.turbidity_range;
-            math::sqrt(check_range("turbidity", turbidity, tmin, tmax)?)
-        } else {
-            0.0
-        };
-        // Eq. 10: the view is rotated by −(φ_sun − π) about z, so that the sun's azimuth is π.
-        let rotate = sun.azimuth() - core::f32::consts::PI;
-        let (sin_r, cos_r) = (math::sin(rotate), math::cos(rotate));
+        let SkyInputs {
+            sqrt_t,
+            theta_s,
+            sin_r,
+            cos_r,
+        } = SkyInputs::new(
+            weights.sun_zenith_range,
+            weights
+                .uses_turbidity
+                .then_some((turbidity, weights.turbidity_range)),
+            sun,
+        )?;
         let off = &weights.input_offset;
         let sc = &weights.input_scale;
         let mut sky = Self {
