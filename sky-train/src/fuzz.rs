@@ -61,7 +61,7 @@ fn mutate(rng: &mut impl Rng, base: &[u8], other: &[u8]) -> Vec<u8> {
     }
     if b.len() >= 4 && rng.random_bool(0.5) {
         let n = b.len();
-        let crc = crc32fast::hash(&b[..n - 4]);
+        let crc = sky_core::neural::weights::crc32(&b[..n - 4]);
         b[n - 4..].copy_from_slice(&crc.to_le_bytes());
     }
     b

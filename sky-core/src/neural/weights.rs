@@ -35,6 +35,47 @@ pub const VERSION: u16 = 1;
 /// Header bytes before the weights.
 pub const HEADER_LEN: usize = 128;
 
+/// CRC-32 (IEEE 802.3 polynomial, reflected, as zlib and PNG) of `bytes`: the weight file's
+/// checksum.
+///
+/// Computed four bits at a time from a 16-entry table (64 bytes), not the 1-16 KB tables of
+/// the fast crates: a weight file is checked once, and on firmware and in the .wasm the flash
+/// matters more than the microseconds.
+///
+/// ```
+/// // The CRC-32 check value (the checksum of the ASCII digits 1 to 9).
+/// assert_eq!(sky_core::neural::weights::crc32(b"123456789"), 0xCBF4_3926);
+/// ```
+#[must_use]
+pub fn crc32(bytes: &[u8]) -> u32 {
+    /// The remainder of each nibble, reflected polynomial 0xEDB88320.
+    const TABLE: [u32; 16] = {
+        let mut table = [0; 16];
+        let mut n = 0;
+        while n < 16 {
+            let mut c = n as u32;
+            let mut k = 0;
+            while k < 4 {
+                c = if c & 1 == 1 {
+                    0xEDB8_8320 ^ (c >> 1)
+                } else {
+                    c >> 1
+                };
+                k += 1;
+            }
+            table[n] = c;
+            n += 1;
+        }
+        table
+    };
+    let mut crc = !0u32;
+    for &b in bytes {
+        crc = TABLE[((crc ^ u32::from(b)) & 0xF) as usize] ^ (crc >> 4);
+        crc = TABLE[((crc ^ (u32::from(b) >> 4)) & 0xF) as usize] ^ (crc >> 4);
+    }
+    !crc
+}
+
 /// The size in bytes of a weight file for `hidden` neurons.
 #[must_use]
 pub const fn encoded_len(hidden: usize) -> usize {
@@ -286,7 +327,7 @@ impl<const H: usize> NeuralWeights<H> {
         }
         let (body, crc) = bytes.split_at(needed - 4);
         let stored = u32::from_le_bytes([crc[0], crc[1], crc[2], crc[3]]);
-        let computed = crc32fast::hash(body);
+        let computed = crc32(body);
         if stored != computed {
             return Err(WeightsError::ChecksumMismatch { stored, computed });
         }
@@ -390,7 +431,7 @@ impl<const H: usize> NeuralWeights<H> {
             w.f32s(row);
         }
         w.f32s(&self.output_bias);
-        let crc = crc32fast::hash(&w.bytes[..needed - 4]);
+        let crc = crc32(&w.bytes[..needed - 4]);
         w.put(&crc.to_le_bytes());
         Ok(needed)
     }
@@ -429,8 +470,22 @@ mod tests {
     /// Rewrites the checksum after a deliberate change, so the decoder reaches the field check.
     fn reseal(buf: &mut [u8]) {
         let n = buf.len();
-        let crc = crc32fast::hash(&buf[..n - 4]);
+        let crc = crc32(&buf[..n - 4]);
         buf[n - 4..].copy_from_slice(&crc.to_le_bytes());
+    }
+
+    /// The nibble-table CRC against crc32fast (an independent implementation) over lengths 0 to
+    /// 700 of pseudo-random bytes.
+    #[test]
+    fn crc32_agrees_with_crc32fast() {
+        let bytes: [u8; 700] = core::array::from_fn(|i| (i.wrapping_mul(2_654_435_761) >> 7) as u8);
+        for n in 0..=bytes.len() {
+            assert_eq!(
+                crc32(&bytes[..n]),
+                crc32fast::hash(&bytes[..n]),
+                "length {n}"
+            );
+        }
     }
 
     #[test]
