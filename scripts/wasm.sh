@@ -39,8 +39,9 @@ build() {
   rm -rf "$site.tmp" "$out/node"
   mkdir -p "$site.tmp"
   cp -r "$root/sky-wasm/www/." "$site.tmp/"
-  "$bindgen" --target web --out-dir "$site.tmp/pkg" "$wasm"
-  "$bindgen" --target nodejs --out-dir "$out/node" "$wasm"
+  # The name section (function names for stack traces) is a fifth of the file: left out.
+  "$bindgen" --target web --remove-name-section --out-dir "$site.tmp/pkg" "$wasm"
+  "$bindgen" --target nodejs --remove-name-section --out-dir "$out/node" "$wasm"
   rm -rf "$site"
   mv "$site.tmp" "$site"
 
