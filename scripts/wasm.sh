@@ -9,6 +9,9 @@
 #                                 every model, the API's errors) and the browser tests (the demo
 #                                 in Debian's chromium through playwright-core; prints the frame
 #                                 times the demo measures; screenshot in target/wasm/artifacts)
+#   scripts/wasm.sh bench         build the shipped .wasm (opt-level 3, simd128) and two peers
+#                                 (no simd128; opt-level "s") and print their sizes and frame
+#                                 times measured in one node run (not part of the test command)
 #
 # The wasm32 toolchain is Debian's rustc-web with -Zbuild-std (shared/DESIGN.md, "Toolchains"),
 # configured in scripts/wasm/config.toml; its output goes to target/wasm, apart from the host build.
@@ -19,20 +22,27 @@ site_default="$out/site"
 bindgen="$root/.tools/wasm-bindgen/bin/wasm-bindgen"
 step() { printf '\n==> %s\n' "$*"; }
 
-build() {
-  local site=${1:-$site_default}
-  step "setup"
-  "$root/scripts/setup.sh"
+# compile_wasm TARGET_DIR [CARGO_ARGS...]: sky-wasm for wasm32, profile wasm-release.
+compile_wasm() {
+  local dir=$1
+  shift
   # Cargo honours [unstable] build-std only when it sees this in its own environment.
   export RUSTC_BOOTSTRAP=1
   local lld
   lld="$(rustc --print sysroot)/lib/rustlib/x86_64-unknown-linux-gnu/bin/rust-lld"
+  (cd "$root" && cargo build -p sky-wasm --lib --locked --target wasm32-unknown-unknown \
+    --profile wasm-release --target-dir "$dir" --config "$root/scripts/wasm/config.toml" \
+    --config "target.wasm32-unknown-unknown.linker='$lld'" "$@")
+}
+simd128=(--config "target.wasm32-unknown-unknown.rustflags=['-C','target-feature=+simd128']")
+
+build() {
+  local site=${1:-$site_default}
+  step "setup"
+  "$root/scripts/setup.sh"
 
   step "sky-wasm: build for wasm32-unknown-unknown (profile wasm-release, simd128)"
-  (cd "$root" && cargo build -p sky-wasm --lib --locked --target wasm32-unknown-unknown \
-    --profile wasm-release --target-dir "$out" --config "$root/scripts/wasm/config.toml" \
-    --config "target.wasm32-unknown-unknown.linker='$lld'" \
-    --config "target.wasm32-unknown-unknown.rustflags=['-C','target-feature=+simd128']")
+  compile_wasm "$out" "${simd128[@]}"
   local wasm="$out/wasm32-unknown-unknown/wasm-release/sky_wasm.wasm"
 
   step "wasm-bindgen: the site's module and TypeScript types, and node bindings for the tests"
@@ -82,12 +92,27 @@ run_tests() {
     node --test --test-reporter=spec tests/browser/)
 }
 
+bench() {
+  build
+  step "peers: opt-level 3 without simd128, opt-level \"s\" with simd128"
+  compile_wasm "$out/peer-nosimd"
+  compile_wasm "$out/peer-size" "${simd128[@]}" --config 'profile.wasm-release.opt-level="s"'
+  for peer in peer-nosimd peer-size; do
+    "$bindgen" --target nodejs --remove-name-section --out-dir "$out/$peer/node" \
+      "$out/$peer/wasm32-unknown-unknown/wasm-release/sky_wasm.wasm"
+  done
+  step "frame times, one node run"
+  node "$root/sky-wasm/bench/frames.mjs" "shipped(O3,simd128)=$out/node/sky_wasm.js" \
+    "O3,no-simd=$out/peer-nosimd/node/sky_wasm.js" "Os,simd128=$out/peer-size/node/sky_wasm.js"
+}
+
 case "${1:-}" in
   build) shift; build "$@" ;;
   serve) shift; serve "$@" ;;
   test) run_tests ;;
+  bench) bench ;;
   *)
-    echo "usage: scripts/wasm.sh build [DIR] | serve [PORT] | test" >&2
+    echo "usage: scripts/wasm.sh build [DIR] | serve [PORT] | test | bench" >&2
     exit 2
     ;;
 esac
