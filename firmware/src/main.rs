@@ -17,6 +17,8 @@ use cortex_m_semihosting::{debug, heprintln, hprintln};
 use sky_core::neural::{NeuralSky, pretrained};
 use sky_core::{PreethamSky, SkyError, Sun, geom};
 
+mod sh;
+
 /// The largest relative deviation from the host accepted for any value.
 const TOLERANCE: f32 = 1e-6;
 
@@ -106,6 +108,35 @@ fn check(case: &Case) -> Result<Deviation, SkyError> {
     Ok(deviation)
 }
 
+/// Reports one case's outcome after `label`, adds its deviation to `total`, and returns 1 if it
+/// failed (an error, or a deviation above `tolerance`), else 0.
+fn tally(
+    label: core::fmt::Arguments,
+    result: Result<Deviation, SkyError>,
+    tolerance: f32,
+    total: &mut Deviation,
+) -> usize {
+    match result {
+        Ok(deviation) => {
+            let pass = deviation.max <= tolerance;
+            hprintln!(
+                "{}: max rel dev {:e}, {}/{} bit-identical: {}",
+                label,
+                deviation.max,
+                deviation.identical,
+                deviation.compared,
+                if pass { "ok" } else { "FAIL" }
+            );
+            total.merge(&deviation);
+            usize::from(!pass)
+        }
+        Err(error) => {
+            hprintln!("{label}: FAIL: {error}");
+            1
+        }
+    }
+}
+
 #[entry]
 fn main() -> ! {
     hprintln!(
@@ -117,29 +148,17 @@ fn main() -> ! {
     let mut total = Deviation::default();
     let mut failures = 0usize;
     for (index, case) in CASES.iter().enumerate() {
-        let sun = case.sun_zenith.to_degrees();
-        let t = case.turbidity;
-        match check(case) {
-            Ok(deviation) => {
-                let pass = deviation.max <= TOLERANCE;
-                hprintln!(
-                    "case {:2}: sun zenith {:4.1} deg, T {:.1}: max rel dev {:e}, {}/{} bit-identical: {}",
-                    index,
-                    sun,
-                    t,
-                    deviation.max,
-                    deviation.identical,
-                    deviation.compared,
-                    if pass { "ok" } else { "FAIL" }
-                );
-                failures += usize::from(!pass);
-                total.merge(&deviation);
-            }
-            Err(error) => {
-                hprintln!("case {index:2}: sun zenith {sun:4.1} deg, T {t:.1}: FAIL: {error}");
-                failures += 1;
-            }
-        }
+        failures += tally(
+            format_args!(
+                "case {:2}: sun zenith {:4.1} deg, T {:.1}",
+                index,
+                case.sun_zenith.to_degrees(),
+                case.turbidity
+            ),
+            check(case),
+            TOLERANCE,
+            &mut total,
+        );
     }
     hprintln!(
         "max rel dev {:e} over {} values, {} bit-identical; {} of {} cases failed",
@@ -149,6 +168,7 @@ fn main() -> ! {
         failures,
         CASES.len()
     );
+    failures += sh::check_all();
     debug::exit(if failures == 0 {
         debug::EXIT_SUCCESS
     } else {

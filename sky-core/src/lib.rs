@@ -41,6 +41,7 @@
 //! |---|---|---|
 //! | Perez all-weather luminance distribution with Preetham's coefficients | [`PreethamSky`] | Perez et al. 1993; Preetham, Shirley, Smits 1999 (seed 002, eqs. 1-19) |
 //! | neural sky: a 6-H-3 network (492 bytes of weights at H = 12) | [`NeuralSky`] | Satilmis et al., *A Machine Learning Driven Sky Model* (seed 000, eqs. 4-10) |
+//! | spherical-harmonics lighting of the Preetham sky, from polynomial tables | [`sh::ShSky`] | Habel, Mustata, Wimmer 2008 (seed 001, eqs. 1-5); Ramamoorthi, Hanrahan 2001 |
 //! | single-scattering skydome with aesthetic principles (AOAS) | [`AoasSky`] | seed 004, eqs. 1-8; O'Neil, "Accurate Atmospheric Scattering", GPU Gems 2 ch. 16 |
 //!
 //! ```
@@ -78,6 +79,7 @@ pub mod geom;
 mod math;
 pub mod neural;
 pub mod preetham;
+pub mod sh;
 
 pub use aoas::AoasSky;
 pub use error::SkyError;

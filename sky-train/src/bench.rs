@@ -10,6 +10,7 @@ use sky_core::color::{self, Xyy};
 use sky_core::geom::{Equirect, Extent};
 use sky_core::neural::{NeuralSky, pretrained};
 use sky_core::preetham::PerezCoefficients;
+use sky_core::sh::{PREETHAM, ShSky};
 use sky_core::{PreethamSky, Sun, Vec3};
 
 use crate::dispatch;
@@ -116,6 +117,16 @@ fn preetham(dirs: &[Vec3], runs: usize, results: &mut Vec<Measurement>) -> Resul
         &mut |d, o| {
             for (o, d) in o.iter_mut().zip(d) {
                 *o = sky.rgb(black_box(*d));
+            }
+        },
+    );
+    let sh = ShSky::new(sky.sun(), sky.turbidity(), 7)?;
+    m(
+        "sh radiance (7 bands), one direction a call",
+        Some(peer),
+        &mut |d, o| {
+            for (o, d) in o.iter_mut().zip(d) {
+                *o = sh.radiance(black_box(*d));
             }
         },
     );
@@ -367,6 +378,86 @@ pub fn report(results: &[Measurement], width: u32, height: u32) -> String {
             m.ns_per_direction,
             peer.ns_per_direction / m.ns_per_direction,
             peer.name,
+        );
+    }
+    s
+}
+
+/// One measured SH reconstruction.
+#[derive(Debug, Clone)]
+pub struct ShMeasurement {
+    /// What was measured.
+    pub name: String,
+    /// Median nanoseconds per `ShSky::new` (eq. 1 for every coefficient, filter, rotation).
+    pub ns_per_sky: f64,
+    /// Table bytes the reconstruction reads.
+    pub table_bytes: usize,
+}
+
+/// Times `ShSky::new` for 1 to 7 bands (`runs` runs of 2000 skies over the whole domain).
+///
+/// # Errors
+/// Never in practice: the parameters are valid constants.
+#[allow(clippy::cast_precision_loss)]
+pub fn sh_reconstruction(runs: usize) -> Result<Vec<ShMeasurement>> {
+    const SKIES: usize = 2000;
+    let params: Vec<(Sun, f32)> = (0..SKIES)
+        .map(|k| {
+            let f = k as f32 / SKIES as f32;
+            Ok((Sun::new(1.57 * f, 6.0 * f)?, 2.5 + 3.5 * ((7.0 * f) % 1.0)))
+        })
+        .collect::<Result<_, sky_core::SkyError>>()?;
+    let mut results = Vec::new();
+    for bands in 1..=7 {
+        let mut failed = false;
+        let t = median_time(runs, || {
+            for &(sun, t) in &params {
+                failed |= black_box(ShSky::new(black_box(sun), black_box(t), bands)).is_err();
+            }
+        });
+        anyhow::ensure!(!failed, "ShSky::new failed");
+        results.push(ShMeasurement {
+            name: format!(
+                "sh ShSky::new, {bands} band{}",
+                if bands == 1 { "" } else { "s" }
+            ),
+            ns_per_sky: t.as_secs_f64() * 1e9 / SKIES as f64,
+            table_bytes: PREETHAM.bytes_for_bands(bands),
+        });
+    }
+    // The same 7-band reconstruction compiled for the CPU's widest vectors (as the batch
+    // evaluators run in `sky-train`).
+    let mut failed = false;
+    let t = median_time(runs, || {
+        dispatch::fastest(
+            #[inline(always)]
+            || {
+                for &(sun, t) in &params {
+                    let sky = ShSky::from_table(&PREETHAM, black_box(sun), black_box(t), 7, true);
+                    failed |= black_box(sky).is_err();
+                }
+            },
+        );
+    });
+    anyhow::ensure!(!failed, "ShSky::from_table failed");
+    results.push(ShMeasurement {
+        name: format!("sh ShSky::new, 7 bands ({})", dispatch::describe()),
+        ns_per_sky: t.as_secs_f64() * 1e9 / SKIES as f64,
+        table_bytes: PREETHAM.bytes_for_bands(7),
+    });
+    Ok(results)
+}
+
+/// Formats SH measurements as aligned lines.
+#[must_use]
+pub fn sh_report(results: &[ShMeasurement]) -> String {
+    let mut s = String::from(
+        "sh reconstruction (ShSky::new: eq. 1, filter eq. 5, rotation eq. 4), median of runs\n",
+    );
+    for m in results {
+        s += &format!(
+            "{:<40} {:>8.1} ns/sky      table {:>6} bytes\n",
+            m.name, m.ns_per_sky, m.table_bytes
         );
     }
     s

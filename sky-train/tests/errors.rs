@@ -53,6 +53,34 @@ fn bad_sky_parameters_name_the_argument_and_range() {
         &["--sun-azimuth", "finite"],
     );
     fails(&["sample", "--sun-zenith", "abc"], &["--sun-zenith", "abc"]);
+    fails(
+        &[
+            "sample",
+            "--model",
+            "sh",
+            "--sun-zenith",
+            "30",
+            "--bands",
+            "9",
+        ],
+        &["--bands", "9", "[1, 7]"],
+    );
+    fails(
+        &[
+            "sample",
+            "--model",
+            "sh",
+            "--sun-zenith",
+            "30",
+            "--turbidity",
+            "2.2",
+        ],
+        &["--turbidity", "2.2", "[2.5, 6]", "--model sh"],
+    );
+    fails(
+        &["sample", "--model", "sh", "--sun-zenith", "91"],
+        &["--sun-zenith", "[0, 90]"],
+    );
     fails(&["sample"], &["--sun-zenith"]);
     fails(
         &["sample", "--sun-zenith", "10", "--model", "nope"],

@@ -10,6 +10,7 @@ use std::fmt::Write as _;
 
 use sky_core::aoas::{AoasSky, DayCycle, Preset, Scattering};
 use sky_core::neural::{NeuralWeights, pretrained};
+use sky_core::sh::ShSky;
 use sky_core::{NeuralSky, PreethamSky, SkyError, Sun, Vec3, geom};
 use sky_wasm::projection::{Kind, Projection};
 
@@ -52,6 +53,19 @@ fn aoas(preset: Preset, sun: Option<(f32, f32)>) -> Result<Case, SkyError> {
     Ok((js, Box::new(move |d, o| sky.rgb_batch(d, o))))
 }
 
+fn sh(z: f32, a: f32, t: f32, bands: u32) -> Result<Case, SkyError> {
+    let sky = ShSky::new(Sun::new(z, a)?, t, bands as usize)?;
+    let js = format!(r#"{{"kind":"sh","args":[{z},{a},{t},{bands}]}}"#);
+    Ok((
+        js,
+        Box::new(move |d, o| {
+            for (o, d) in o.iter_mut().zip(d) {
+                *o = sky.radiance(*d);
+            }
+        }),
+    ))
+}
+
 fn floats(out: &mut String, values: impl IntoIterator<Item = f32>) {
     out.push('[');
     for (i, v) in values.into_iter().enumerate() {
@@ -76,6 +90,9 @@ fn main() -> anyhow::Result<()> {
         neural("hosek", &pretrained::HOSEK, 0.6, 2.5, 7.0)?,
         neural_file("sky-core/weights/preetham.skyn", 0.8, 3.0, 4.0)?,
         aoas(Preset::Coral, Some((1.0, 2.0)))?,
+        sh(0.5, 1.0, 3.0, 5)?,
+        sh(1.4, 4.0, 5.5, 7)?,
+        sh(0.9, 2.0, 2.5, 1)?,
     ];
     for preset in Preset::ALL {
         cases.push(aoas(preset, None)?);

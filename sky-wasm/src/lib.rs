@@ -30,6 +30,7 @@ pub mod srgb8;
 
 use sky_core::aoas::{AoasSky, DayCycle, Preset, Scattering, Style};
 use sky_core::neural::{NeuralWeights, pretrained};
+use sky_core::sh::ShSky;
 use sky_core::{NeuralSky, PreethamSky, Sun, Vec3, color, geom};
 use wasm_bindgen::prelude::*;
 
@@ -59,24 +60,33 @@ enum Model {
     Preetham(PreethamSky),
     Neural(NeuralSky),
     Aoas(Box<AoasSky>),
+    Sh(Box<ShSky>),
 }
 
+// Not inlined: each call site would hold its own copy of every model's kernels (the .wasm
+// has a 200 KB budget); a call per direction or per chunk of 256 costs nothing measurable.
 impl Model {
-    #[inline]
+    #[inline(never)]
     fn rgb(&self, dir: Vec3) -> Vec3 {
         match self {
             Self::Preetham(s) => s.rgb(dir),
             Self::Neural(s) => s.rgb(dir),
             Self::Aoas(s) => s.rgb(dir),
+            Self::Sh(s) => s.radiance(dir),
         }
     }
 
-    #[inline]
+    #[inline(never)]
     fn rgb_batch(&self, dirs: &[Vec3], out: &mut [Vec3]) {
         match self {
             Self::Preetham(s) => s.rgb_batch(dirs, out),
             Self::Neural(s) => s.rgb_batch(dirs, out),
             Self::Aoas(s) => s.rgb_batch(dirs, out),
+            Self::Sh(s) => {
+                for (o, d) in out.iter_mut().zip(dirs) {
+                    *o = s.radiance(*d);
+                }
+            }
         }
     }
 }
@@ -197,7 +207,29 @@ impl Sky {
         })
     }
 
-    /// The model's name: "preetham", "neural" or "aoas".
+    /// The spherical-harmonics lighting of the Preetham sky (seed 001: polynomial tables in sun
+    /// zenith and turbidity, ringing filter, rotation to the sun's azimuth) with `bands` bands
+    /// (1 to 7), for a sun at `sun_zenith` in [0, π/2] and `sun_azimuth` (radians) and
+    /// `turbidity` in the tables' range [2.5, 6]. Its `rgb` is the SH radiance; a sphere lit by
+    /// it is drawn by [`Renderer::sphere`].
+    ///
+    /// # Errors
+    /// sky-core's message for a parameter out of range.
+    pub fn sh(
+        sun_zenith: f32,
+        sun_azimuth: f32,
+        turbidity: f32,
+        bands: u32,
+    ) -> Result<Sky, JsError> {
+        let sun = Sun::new(sun_zenith, sun_azimuth).map_err(js_error)?;
+        let sky = ShSky::new(sun, turbidity, bands as usize).map_err(js_error)?;
+        Ok(Self {
+            model: Model::Sh(Box::new(sky)),
+            sun,
+        })
+    }
+
+    /// The model's name: "preetham", "neural", "aoas" or "sh".
     #[wasm_bindgen(getter)]
     #[must_use]
     pub fn model(&self) -> String {
@@ -205,6 +237,7 @@ impl Sky {
             Model::Preetham(_) => "preetham",
             Model::Neural(_) => "neural",
             Model::Aoas(_) => "aoas",
+            Model::Sh(_) => "sh",
         }
         .into()
     }
@@ -299,6 +332,18 @@ impl Renderer {
         Self::new(Kind::Panorama, width, height)
     }
 
+    /// A `size` × `size` image of a white diffuse sphere (albedo 1) lit by an SH sky
+    /// ([`Sky::sh`]), seen from the south looking north: east right, the zenith up. Each pixel
+    /// is the sphere's radiance E(n)/π for its normal n, with E sky-core's SH irradiance
+    /// (seed 001's clamped-cosine convolution), on the sky's radiance scale. Pixels off the
+    /// sphere are transparent black.
+    ///
+    /// # Errors
+    /// A size of 0 or above 4096.
+    pub fn sphere(size: u32) -> Result<Renderer, JsError> {
+        Self::new(Kind::Sphere, size, size)
+    }
+
     fn new(kind: Kind, width: u32, height: u32) -> Result<Renderer, JsError> {
         let projection = Projection::new(kind, width, height).map_err(js_error)?;
         let n = projection.pixel_count();
@@ -351,11 +396,27 @@ impl Renderer {
         exposure: f32,
     ) -> Result<(), JsError> {
         self.check_len(out.length(), 4, "out")?;
+        let lit_sphere = match (&sky.model, self.projection.kind()) {
+            (Model::Sh(sh), Kind::Sphere) => Some(sh),
+            (_, Kind::Sphere) => {
+                return Err(JsError::new(
+                    "the sphere is lit by a spherical-harmonics sky: build it with Sky.sh",
+                ));
+            }
+            _ => None,
+        };
         let mut rgb = [Vec3::ZERO; CHUNK];
         let p = &self.projection;
         for (dirs, pixels) in p.directions().chunks(CHUNK).zip(p.pixels().chunks(CHUNK)) {
             let rgb = &mut rgb[..dirs.len()];
-            sky.model.rgb_batch(dirs, rgb);
+            match lit_sphere {
+                Some(sh) => {
+                    for (o, n) in rgb.iter_mut().zip(dirs) {
+                        *o = sh.irradiance(*n) * core::f32::consts::FRAC_1_PI;
+                    }
+                }
+                None => sky.model.rgb_batch(dirs, rgb),
+            }
             write_srgb(&self.table, &mut self.srgb, pixels, rgb, exposure);
         }
         out.copy_from(&self.srgb);

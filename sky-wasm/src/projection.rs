@@ -17,11 +17,16 @@ pub enum Kind {
     /// The upper hemisphere as sky-core's [`Equirect`] grid: azimuth 0 to 2π from left to right,
     /// zenith angle 0 (top) to π/2 (bottom).
     Panorama,
+    /// The unit normals of a sphere filling the image (the disc inscribed in it), seen from the
+    /// south looking north: image right is east (+x), image up is the zenith (+z); the visible
+    /// hemisphere faces south (−y).
+    Sphere,
 }
 
 /// The view directions of an image's pixels: computed once, reused for every frame.
 #[derive(Debug, Clone)]
 pub struct Projection {
+    kind: Kind,
     width: u32,
     height: u32,
     /// Unit view direction of each pixel that shows the sky.
@@ -52,13 +57,19 @@ impl Projection {
         }
         let grid = Equirect::new(width, height, Extent::UpperHemisphere)?;
         let mut p = Self {
+            kind,
             width,
             height,
             directions: Vec::new(),
             pixels: Vec::new(),
         };
         match kind {
-            Kind::Fisheye => p.fill_fisheye(),
+            Kind::Fisheye => p.fill_disc(|u, v, rho2| {
+                let s = (2.0 - rho2).sqrt();
+                // East (+x) to the left of the image: x = −u.
+                Vec3::new(-u * s, v * s, 1.0 - rho2)
+            }),
+            Kind::Sphere => p.fill_disc(|u, v, rho2| Vec3::new(u, -(1.0 - rho2).sqrt(), v)),
             Kind::Panorama => p.fill_panorama(&grid),
         }
         Ok(p)
@@ -67,8 +78,10 @@ impl Projection {
     /// The largest width or height accepted (a 4096 × 4096 image is 64 MB of RGBA).
     pub const MAX_SIZE: u32 = 4096;
 
+    /// The pixels of the disc inscribed in the image, each with the direction `f(u, v, ρ²)` of
+    /// its centre's coordinates (u right, v up, the rim at ρ = 1).
     #[allow(clippy::cast_precision_loss)] // pixel coordinates below 2^12: exact
-    fn fill_fisheye(&mut self) {
+    fn fill_disc(&mut self, f: impl Fn(f32, f32, f32) -> Vec3) {
         let (w, h) = (self.width as f32, self.height as f32);
         let radius = 0.5 * w.min(h);
         for j in 0..self.height {
@@ -77,9 +90,7 @@ impl Projection {
                 let u = (i as f32 + 0.5 - 0.5 * w) / radius;
                 let rho2 = u * u + v * v;
                 if rho2 <= 1.0 {
-                    let s = (2.0 - rho2).sqrt();
-                    // East (+x) to the left of the image: x = −u.
-                    self.directions.push(Vec3::new(-u * s, v * s, 1.0 - rho2));
+                    self.directions.push(f(u, v, rho2));
                     self.pixels.push(j * self.width + i);
                 }
             }
@@ -93,6 +104,12 @@ impl Projection {
                 self.pixels.push(j * self.width + i);
             }
         }
+    }
+
+    /// The image's shape.
+    #[must_use]
+    pub fn kind(&self) -> Kind {
+        self.kind
     }
 
     /// Image width and height in pixels.
@@ -158,6 +175,17 @@ mod tests {
         #[allow(clippy::cast_precision_loss)]
         let fraction = within as f32 / p.directions().len() as f32;
         assert!((fraction - 0.5).abs() < 0.01, "{fraction}");
+    }
+
+    #[test]
+    fn sphere_normals_face_the_viewer() {
+        let p = Projection::new(Kind::Sphere, 33, 33).expect("valid size");
+        let centre = p.pixels().iter().position(|&q| q == 16 * 33 + 16);
+        let n = p.directions()[centre.expect("inside")];
+        assert!(n.y < -0.999, "the centre faces south: {n}");
+        for d in p.directions() {
+            assert!((d.length() - 1.0).abs() < 1e-5 && d.y <= 0.0, "{d}");
+        }
     }
 
     #[test]

@@ -22,10 +22,15 @@ function view(id, make) {
 
 const dome = view("dome", Renderer.fisheye);
 const panorama = view("panorama", Renderer.panorama);
+const sphere = view("sphere", (size) => Renderer.sphere(size));
+/** Bands of the SH sky: 5 is where its irradiance is within 1 % (sky-core's docs). */
+const SH_BANDS = 5;
+/** The turbidities the SH tables were fitted for. */
+const SH_TURBIDITY = [2.5, 6];
 
 for (const name of aoasPresets()) $("preset").add(new Option(name, name));
 
-const TURBIDITY_RANGE = { "neural-hosek": [1, 10], aoas: null };
+const TURBIDITY_RANGE = { "neural-hosek": [1, 10], aoas: null, sh: SH_TURBIDITY };
 
 function readControls() {
   return {
@@ -45,6 +50,7 @@ function makeSky(model, p) {
     case "neural-preetham": return Sky.neural("preetham", p.sunZenith, p.sunAzimuth, p.turbidity);
     case "neural-hosek": return Sky.neural("hosek", p.sunZenith, p.sunAzimuth, p.turbidity);
     case "aoas": return Sky.aoasWithSun(p.preset, p.sunZenith, p.sunAzimuth);
+    case "sh": return Sky.sh(p.sunZenith, p.sunAzimuth, p.turbidity, SH_BANDS);
     default: throw new Error(`unknown model ${model}`);
   }
 }
@@ -105,6 +111,21 @@ function syncControls(p) {
   $("exposure-value").value = $("exposure").value;
 }
 
+/** The sphere, lit by the SH sky of the same sun (the tables' turbidity range, 2.5-6). */
+function drawSphere(p) {
+  const [lo, hi] = SH_TURBIDITY;
+  const turbidity = Math.min(hi, Math.max(lo, p.turbidity));
+  const sh = Sky.sh(p.sunZenith, p.sunAzimuth, turbidity, SH_BANDS);
+  try {
+    sphere.renderer.renderSrgb(sh, sphere.image.data, sh.autoExposure() * 2 ** p.ev);
+    sphere.ctx.putImageData(sphere.image, 0, 0);
+  } finally {
+    sh.free();
+  }
+  $("sphere-caption").textContent =
+    `a white sphere lit by the Preetham sky's spherical harmonics (${SH_BANDS} bands, turbidity ${turbidity}), seen from the south`;
+}
+
 function draw() {
   const p = readControls();
   syncControls(p);
@@ -112,6 +133,7 @@ function draw() {
     const { ms, frame } = drawDome(p);
     drawView(panorama, frame, p.view);
     frame.skies.forEach((s) => s.free());
+    drawSphere(p);
     $("frame-ms").textContent = ms.toFixed(2);
     $("error").textContent = "";
   } catch (e) {

@@ -4,6 +4,9 @@
 //! f32 costs); the paper's colour claims checked numerically; skydome scale invariance (Fig. 7);
 //! frame reproducibility; and properties over the whole parameter space.
 
+mod common;
+use common::run;
+
 use std::f32::consts::{FRAC_PI_2, PI};
 
 use proptest::prelude::*;
@@ -671,19 +674,6 @@ proptest! {
 // ---------------------------------------------------------------------------------------------
 // The command line
 // ---------------------------------------------------------------------------------------------
-
-/// Runs a `sky-train` command line in-process with `input` on stdin and returns stdout.
-fn run(args: &[&str], input: &str) -> String {
-    use clap::Parser;
-    let cli = sky_train::cli::Cli::try_parse_from(
-        std::iter::once("sky-train").chain(args.iter().copied()),
-    )
-    .unwrap_or_else(|e| panic!("{args:?}: {e}"));
-    let mut output = Vec::new();
-    sky_train::cli::execute(cli.command, &mut input.as_bytes(), &mut output)
-        .unwrap_or_else(|e| panic!("{args:?}: {e:#}"));
-    String::from_utf8(output).expect("UTF-8 output")
-}
 
 /// `sample --model aoas` reports sky-core's values (bit for bit: f32 printed shortest
 /// round-trips), which agree with the f64 O'Neil reference to 2e-3; with a style file as with

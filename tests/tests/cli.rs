@@ -1,19 +1,12 @@
 //! `sky-train sample` and `render` against the independent f64 reference of seed 002, driven
 //! in-process through `sky_train::cli::execute` (the binary is a thin wrapper over it).
 
+mod common;
+use common::run;
+
 use clap::Parser;
 use sky_tests::reference::preetham::{self as reference, Sky};
 use sky_train::cli::{self, Cli};
-
-/// Runs a `sky-train` command line with `input` on stdin and returns stdout.
-fn run(args: &[&str], input: &str) -> String {
-    let cli = Cli::try_parse_from(std::iter::once("sky-train").chain(args.iter().copied()))
-        .unwrap_or_else(|e| panic!("{args:?}: {e}"));
-    let mut output = Vec::new();
-    cli::execute(cli.command, &mut input.as_bytes(), &mut output)
-        .unwrap_or_else(|e| panic!("{args:?}: {e:#}"));
-    String::from_utf8(output).expect("UTF-8 output")
-}
 
 fn parse_csv(csv: &str) -> Vec<Vec<f64>> {
     let mut lines = csv.lines();

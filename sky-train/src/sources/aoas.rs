@@ -7,7 +7,7 @@ use sky_core::{SkyError, Sun, Vec3};
 use crate::dispatch;
 use crate::style_file;
 
-use super::{ModelKind, ParamError, SkyParams, SkySource, describe, not_for, param_error, radians};
+use super::{ModelKind, ParamError, SkyParams, SkySource, describe, param_error, radians};
 
 /// [`sky_core::AoasSky`] as a [`SkySource`]: linear RGB in O'Neil's relative units (see
 /// [`AoasSky`]), so `sample`'s luminance Y is relative too, not cd/m².
@@ -27,9 +27,7 @@ impl Aoas {
     /// A [`ParamError`] naming the argument (or the style file's key) and its valid range.
     pub fn new(params: &SkyParams) -> Result<Self, ParamError> {
         let kind = ModelKind::Aoas;
-        if params.turbidity.is_some() {
-            return Err(not_for(kind, "--turbidity", "preetham"));
-        }
+        params.check_applies_to(kind)?;
         let style_name = params.style.clone().unwrap_or_else(|| "physical".into());
         let (scattering, mut style) = style_file::load(&style_name)?;
         match (params.sun_zenith_deg, params.sun_azimuth_deg) {

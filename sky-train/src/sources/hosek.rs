@@ -3,7 +3,7 @@
 
 use sky_core::{Sun, Vec3, geom};
 
-use super::{ModelKind, ParamError, SkyParams, SkySource, not_for, param_error};
+use super::{ModelKind, ParamError, SkyParams, SkySource, param_error};
 
 /// Ground albedo used for every Hosek-Wilkie sky (seed 000: {0.5, 0.5, 0.5}).
 pub(crate) const ALBEDO: f32 = 0.5;
@@ -24,9 +24,7 @@ impl Hosek {
     #[allow(clippy::cast_possible_truncation)]
     pub fn new(params: &SkyParams) -> Result<Self, ParamError> {
         let kind = ModelKind::Hosek;
-        if params.style.is_some() {
-            return Err(not_for(kind, "--style", "aoas"));
-        }
+        params.check_applies_to(kind)?;
         let err = |e| param_error(kind, e);
         let sun = params.required_sun(kind)?;
         let turbidity = params.turbidity.unwrap_or(3.0) as f32;

@@ -7,6 +7,7 @@ mod aoas;
 mod hosek;
 mod neural;
 mod preetham;
+mod sh;
 
 use std::fmt;
 
@@ -17,6 +18,7 @@ pub use aoas::Aoas;
 pub use hosek::Hosek;
 pub use neural::Neural;
 pub use preetham::Preetham;
+pub use sh::Sh;
 
 /// A sky model evaluated over many view directions.
 pub trait SkySource: Send + Sync {
@@ -52,6 +54,9 @@ pub enum ModelKind {
     Neural,
     /// The AOAS single-scattering skydome with a style (sky-core, seed 004).
     Aoas,
+    /// The spherical-harmonics lighting of the Preetham sky, reconstructed from sky-core's
+    /// polynomial tables (seed 001; `--bands`, `--no-ringing-filter`).
+    Sh,
 }
 
 impl ModelKind {
@@ -63,7 +68,8 @@ impl ModelKind {
             | Self::Hosek
             | Self::NeuralPreetham
             | Self::NeuralHosek
-            | Self::Aoas => (0.0, 90.0),
+            | Self::Aoas
+            | Self::Sh => (0.0, 90.0),
             Self::Neural => (0.0, 180.0),
         }
     }
@@ -79,6 +85,8 @@ impl ModelKind {
     pub fn turbidity_range(self) -> (f64, f64) {
         match self {
             Self::Preetham | Self::NeuralPreetham => (2.0, 6.0),
+            // The SH tables are fitted over 2.5..=6 (seed 001 leaves out 2-2.5).
+            Self::Sh => (2.5, 6.0),
             Self::Hosek | Self::NeuralHosek => (1.0, 10.0),
             Self::Neural => (0.0, f64::INFINITY),
             // AOAS has no turbidity (its atmosphere is set by its style).
@@ -96,6 +104,7 @@ impl fmt::Display for ModelKind {
             Self::NeuralHosek => "neural-hosek",
             Self::Neural => "neural",
             Self::Aoas => "aoas",
+            Self::Sh => "sh",
         })
     }
 }
@@ -113,6 +122,10 @@ pub struct SkyParams {
     pub turbidity: Option<f64>,
     /// A style preset name or a style file in TOML (aoas only; `physical` when absent).
     pub style: Option<String>,
+    /// Spherical-harmonics bands, 1 to 7 (sh only; 7 when absent).
+    pub bands: Option<usize>,
+    /// Whether the ringing filter of seed 001 eq. 5 is applied (sh only; on when absent).
+    pub ringing_filter: Option<bool>,
 }
 
 impl SkyParams {
@@ -123,7 +136,7 @@ impl SkyParams {
             sun_zenith_deg: Some(sun_zenith_deg),
             sun_azimuth_deg: Some(sun_azimuth_deg),
             turbidity: Some(turbidity),
-            style: None,
+            ..Self::default()
         }
     }
 
@@ -192,14 +205,33 @@ pub fn build(kind: ModelKind, params: &SkyParams) -> Result<Box<dyn SkySource>, 
                 .into(),
         )),
         ModelKind::Aoas => Ok(Box::new(Aoas::new(params)?)),
+        ModelKind::Sh => Ok(Box::new(Sh::new(params)?)),
     }
 }
 
-/// A `ParamError` for a parameter `kind` does not take.
-pub(crate) fn not_for(kind: ModelKind, flag: &str, models: &str) -> ParamError {
-    ParamError(format!(
-        "{flag} does not apply to --model {kind} (only to --model {models})"
-    ))
+impl SkyParams {
+    /// Refuses the parameters `kind` does not take: `--style` (aoas only), `--turbidity` (every
+    /// model but aoas), `--bands` and `--no-ringing-filter` (sh only).
+    pub(crate) fn check_applies_to(&self, kind: ModelKind) -> Result<(), ParamError> {
+        let refuse = |flag: &str, models: &str| {
+            Err(ParamError(format!(
+                "{flag} does not apply to --model {kind} (only to --model {models})"
+            )))
+        };
+        if self.style.is_some() && kind != ModelKind::Aoas {
+            return refuse("--style", "aoas");
+        }
+        if self.turbidity.is_some() && !kind.uses_turbidity() {
+            return refuse("--turbidity", "preetham, hosek, neural*, sh");
+        }
+        if self.bands.is_some() && kind != ModelKind::Sh {
+            return refuse("--bands", "sh");
+        }
+        if self.ringing_filter.is_some() && kind != ModelKind::Sh {
+            return refuse("--no-ringing-filter", "sh");
+        }
+        Ok(())
+    }
 }
 
 /// Rewrites a sky-core error in the command line's terms (argument names, degrees).
@@ -272,6 +304,7 @@ fn flag(parameter: &str) -> &str {
         "turbidity" => "--turbidity",
         "sun zenith" => "--sun-zenith",
         "sun azimuth" => "--sun-azimuth",
+        "SH bands" => "--bands",
         other => other,
     }
 }

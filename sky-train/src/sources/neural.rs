@@ -3,7 +3,7 @@
 use sky_core::Vec3;
 use sky_core::neural::{NeuralSky, NeuralWeights};
 
-use super::{ModelKind, ParamError, SkyParams, SkySource, not_for, param_error};
+use super::{ModelKind, ParamError, SkyParams, SkySource, param_error};
 use crate::dispatch;
 
 /// A [`sky_core::NeuralSky`] as a [`SkySource`].
@@ -23,9 +23,7 @@ impl Neural {
         kind: ModelKind,
         params: &SkyParams,
     ) -> Result<Self, ParamError> {
-        if params.style.is_some() {
-            return Err(not_for(kind, "--style", "aoas"));
-        }
+        params.check_applies_to(kind)?;
         let sun = params.required_sun(kind)?;
         let turbidity = params.turbidity.unwrap_or(3.0);
         let sky =

@@ -1,11 +1,11 @@
 //! The Preetham sky of sky-core.
 
 use sky_core::color::Xyy;
-use sky_core::{PreethamSky, Sun, Vec3};
+use sky_core::{PreethamSky, Vec3};
 
 use crate::dispatch;
 
-use super::{ModelKind, ParamError, SkyParams, SkySource, not_for, param_error, radians};
+use super::{ModelKind, ParamError, SkyParams, SkySource, param_error};
 
 /// [`sky_core::PreethamSky`] as a [`SkySource`].
 #[derive(Debug, Clone, Copy)]
@@ -13,30 +13,18 @@ pub struct Preetham(pub PreethamSky);
 
 impl Preetham {
     /// The Preetham sky for `params` (the sun zenith is required, the azimuth defaults to 0 and
-    /// the turbidity to 3; a style is refused).
+    /// the turbidity to 3; parameters of other models are refused).
     ///
     /// # Errors
     /// A [`ParamError`] when a parameter is missing or refused, or sky-core rejects one.
     #[allow(clippy::cast_possible_truncation)]
     pub fn new(params: &SkyParams) -> Result<Self, ParamError> {
         let kind = ModelKind::Preetham;
-        if params.style.is_some() {
-            return Err(not_for(kind, "--style", "aoas"));
-        }
-        let Some(zenith) = params.sun_zenith_deg else {
-            return Err(ParamError(
-                "--sun-zenith <DEG> is required for --model preetham".into(),
-            ));
-        };
-        let err = |e| param_error(kind, e);
-        let sun = Sun::new(
-            radians(zenith),
-            radians(params.sun_azimuth_deg.unwrap_or(0.0)),
-        )
-        .map_err(err)?;
+        params.check_applies_to(kind)?;
+        let sun = params.required_sun(kind)?;
         PreethamSky::new(sun, params.turbidity.unwrap_or(3.0) as f32)
             .map(Self)
-            .map_err(err)
+            .map_err(|e| param_error(kind, e))
     }
 }
 

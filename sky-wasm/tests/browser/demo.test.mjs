@@ -101,7 +101,7 @@ function meanRgb(pixels, zenithDeg, azimuths) {
 }
 
 const chroma = ([r, g, b]) => ({ blue: b / (r + g + b), red: r / (r + g + b) });
-const MODELS = ["preetham", "neural-preetham", "neural-hosek", "aoas"];
+const MODELS = ["preetham", "neural-preetham", "neural-hosek", "aoas", "sh"];
 
 test("the page loads without a console error and draws a sky", async () => {
   assert.deepEqual(problems, []);
@@ -143,7 +143,7 @@ test("each control changes the image", async () => {
   const changes = [
     { turbidity: 5 }, { "sun-zenith": 60 }, { "sun-azimuth": 200 }, { exposure: 1.5 },
     { model: "neural-hosek" }, { view: "difference" }, { view: "split" },
-    { model: "aoas", view: "single" }, { preset: "coral" },
+    { model: "aoas", view: "single" }, { preset: "coral" }, { model: "sh" },
   ];
   for (const change of changes) {
     await set(change);
@@ -152,6 +152,18 @@ test("each control changes the image", async () => {
     assert.ok(differing > 1000, `${JSON.stringify(change)} changed ${differing} values`);
     before = now;
   }
+});
+
+test("the sphere is drawn, brighter on the sun's side", async () => {
+  await set({ model: "preetham", view: "single", "sun-zenith": 60, "sun-azimuth": 0, turbidity: 3, exposure: 0 });
+  const lum = await page.evaluate(() => {
+    const c = document.getElementById("sphere");
+    const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+    const at = (i, j) => { const k = (j * c.width + i) * 4; return d[k] + d[k + 1] + d[k + 2]; };
+    const s = c.width;
+    return { east: at(Math.round(s * 0.85), s >> 1), west: at(Math.round(s * 0.15), s >> 1) };
+  });
+  assert.ok(lum.east > lum.west + 30, `east ${lum.east} vs west ${lum.west}`);
 });
 
 test("screenshot kept as an artifact", async () => {

@@ -24,6 +24,7 @@ function build({ kind, args, file }) {
     case "neuralFromBytes": return Sky.neuralFromBytes(readFileSync(path.join(root, file)), ...args);
     case "aoas": return Sky.aoas(...args);
     case "aoasWithSun": return Sky.aoasWithSun(...args);
+    case "sh": return Sky.sh(...args);
     default: throw new Error(`unknown sky kind ${kind}`);
   }
 }
@@ -44,7 +45,7 @@ function worstRelative(got, wantDecimal) {
 
 const models = new Set(native.skies.map((s) => s.sky.kind));
 test("the native values cover every model", () => {
-  for (const kind of ["preetham", "neural", "neuralFromBytes", "aoas", "aoasWithSun"]) {
+  for (const kind of ["preetham", "neural", "neuralFromBytes", "aoas", "aoasWithSun", "sh"]) {
     assert.ok(models.has(kind), kind);
   }
   assert.equal(native.skies.filter((s) => s.sky.kind === "aoas").length, aoasPresets().length);
@@ -87,6 +88,11 @@ test("sky-core's errors become exceptions with its message", () => {
   assert.throws(() => Sky.neural("perez", 0.5, 0, 3), { message: /"perez" is not a shipped neural sky/ });
   assert.throws(() => Sky.aoas("mauve"), { message: /"mauve" is not an AOAS style preset \(one of: physical, sunrise/ });
   assert.throws(() => Sky.aoasWithSun("coral", 1.8, 0), { message: /sun is below the horizon/ });
+  assert.throws(() => Sky.sh(0.5, 0, 2, 5), { message: /turbidity = 2 is outside the valid range \[2.5, 6\]/ });
+  assert.throws(() => Sky.sh(0.5, 0, 3, 8), { message: "SH bands = 8 is outside the valid range [1, 7]" });
+  assert.throws(() => Renderer.sphere(16).renderSrgb(Sky.preetham(0.5, 0, 3), new Uint8ClampedArray(16 * 16 * 4), 1), {
+    message: "the sphere is lit by a spherical-harmonics sky: build it with Sky.sh",
+  });
   assert.throws(() => Renderer.fisheye(0, 16), {
     message: "image width [px] = 0 is outside the valid range [1, 4096]",
   });
@@ -127,4 +133,17 @@ test("renderSrgb: opaque inside the dome, transparent outside, exposure scales",
   const diff = new Uint8ClampedArray(64 * 64 * 4);
   r.renderDifferenceSrgb(sky, sky, diff, 1e6);
   for (let k = 0; k < diff.length; k += 4) assert.deepEqual(Array.from(diff.subarray(k, k + 3)), [0, 0, 0]);
+});
+
+test("the sphere lit by the SH sky is brighter on the sun's side, and matches sky-core's irradiance", () => {
+  // The sun in the east (azimuth 0), 60° from the zenith: the sphere is seen from the south,
+  // east to the right.
+  const sky = Sky.sh(60 * Math.PI / 180, 0, 3, 5);
+  const r = Renderer.sphere(64);
+  const rgba = new Uint8ClampedArray(64 * 64 * 4);
+  r.renderSrgb(sky, rgba, sky.autoExposure());
+  const lum = (i, j) => { const k = (j * 64 + i) * 4; return rgba[k] + rgba[k + 1] + rgba[k + 2]; };
+  assert.ok(lum(56, 32) > lum(8, 32) + 30, `east ${lum(56, 32)} vs west ${lum(8, 32)}`);
+  assert.ok(lum(32, 8) > lum(32, 56), `top ${lum(32, 8)} vs bottom ${lum(32, 56)}`);
+  assert.equal(rgba[3], 0, "corner off the sphere");
 });
