@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Installs what the test command needs beyond the machine's Rust toolchain, idempotently:
 #  - Debian's rustc-web + its std source (cross builds with -Zbuild-std) and lld (linker);
-#  - qemu-system-arm, unpacked into .tools/qemu (apt would replace the machine's backported qemu-utils).
+#  - qemu-system-arm, unpacked into .tools/qemu (apt would replace the machine's backported qemu-utils);
+#  - for sky-wasm (scripts/wasm.sh): Debian's chromium (the browser tests' browser), node and npm,
+#    wasm-bindgen-cli at the exact version of the wasm-bindgen crate in Cargo.lock (in
+#    .tools/wasm-bindgen), and the npm packages of sky-wasm/package-lock.json (`npm ci`).
 # Safe to run again: every step checks first.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -11,6 +14,9 @@ mkdir -p "$tools"
 need_apt=()
 [ -x /usr/bin/rustc ] && [ -d /usr/lib/rustlib/src/rust/library ] || need_apt+=(rustc-web rust-web-src)
 command -v ld.lld >/dev/null || need_apt+=(lld)
+[ -x /usr/bin/chromium ] || need_apt+=(chromium)
+command -v node >/dev/null || need_apt+=(nodejs)
+command -v npm >/dev/null || need_apt+=(npm)
 
 qemu_libs=(libaio1 libbpf1 libcapstone4 libfdt1 libfuse3-3 libibverbs1 libnuma1 libpixman-1-0
   libpmem1 librdmacm1 libslirp0 liburing2 libvdeplug2 libglib2.0-0 libgnutls30 libsasl2-2
@@ -35,5 +41,26 @@ if [ ! -x "$tools/qemu/usr/bin/qemu-system-arm" ]; then
   rm -rf "$tools/qemu" "$dl"
   mv "$tools/qemu.tmp" "$tools/qemu"
 fi
+
+# wasm-bindgen-cli must match the wasm-bindgen crate exactly (its output embeds the schema version).
+bindgen_version=$(awk '/^name = "wasm-bindgen"$/ { getline; gsub(/"/, "", $3); print $3 }' "$root/Cargo.lock")
+bindgen="$tools/wasm-bindgen/bin/wasm-bindgen"
+if [ "$("$bindgen" --version 2>/dev/null)" != "wasm-bindgen $bindgen_version" ]; then
+  echo "setup: cargo install wasm-bindgen-cli $bindgen_version into .tools/wasm-bindgen (a few minutes)"
+  # Not --locked: the CLI's own lock file pins a webpki-roots release the registry here lacks.
+  cargo install -q wasm-bindgen-cli --version "=$bindgen_version" --root "$tools/wasm-bindgen" --force
+fi
+
+# playwright-core drives Debian's chromium; it must never download a browser of its own.
+export PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1
+stamp="$root/sky-wasm/node_modules/.package-lock.stamp"
+if ! cmp -s "$root/sky-wasm/package-lock.json" "$stamp"; then
+  echo "setup: npm ci in sky-wasm"
+  (cd "$root/sky-wasm" && npm ci --no-audit --no-fund --loglevel=error)
+  cp "$root/sky-wasm/package-lock.json" "$stamp"
+fi
+
 "$tools/qemu/usr/bin/qemu-system-arm" --version | head -n 1
+"$bindgen" --version
+/usr/bin/chromium --version 2>/dev/null | head -n 1
 /usr/bin/rustc --version

@@ -1,23 +1,491 @@
-//! sky-core for browsers. For now this crate only proves that sky-core links into a wasm-ready
-//! crate; the wasm-bindgen API and the demo page come with the sky-wasm issue.
+//! sky-core for browsers, through wasm-bindgen.
+//!
+//! Two classes reach JavaScript (TypeScript types come out of the build):
+//!
+//! * [`Sky`]: one sky of any sky-core model, built once from its parameters (a constructor per
+//!   model; errors become JavaScript exceptions carrying sky-core's message), then evaluated per
+//!   direction with [`Sky::rgb`].
+//! * [`Renderer`]: a fisheye dome or a panorama of a given size, whose pixel directions are
+//!   computed once; each frame is one call that writes the whole image into a caller-provided
+//!   `Uint8ClampedArray` (8-bit sRGB, for a canvas's `ImageData`) or `Float32Array` (linear
+//!   RGB), so no pixel crosses between JavaScript and WebAssembly on its own.
+//!
+//! ```js
+//! import init, { Sky, Renderer } from "./pkg/sky_wasm.js";
+//! await init();
+//! const sky = Sky.preetham(60 * Math.PI / 180, 0, 3);      // sun zenith, azimuth (rad), turbidity
+//! const dome = Renderer.fisheye(512, 512);
+//! const image = new ImageData(512, 512);
+//! dome.renderSrgb(sky, image.data, sky.autoExposure());    // one call per frame
+//! canvas.getContext("2d").putImageData(image, 0, 0);
+//! ```
+//!
+//! Units and axes are sky-core's: radians, +z up, azimuth from +x (east) towards +y (north);
+//! linear RGB in cd/m² for the Preetham and neural skies, O'Neil's relative units for AOAS.
+//! The values are sky-core's, bit for bit: the same code compiled for wasm32 (the node tests
+//! check every model against the native build to 1e-6 relative).
 
-#![no_std]
+pub mod projection;
+pub mod srgb8;
 
-/// Linear sRGB of the Preetham sky towards (`view_zenith`, `view_azimuth`) for a sun at
-/// (`sun_zenith`, `sun_azimuth`) and `turbidity`, all angles in radians, or `None` for invalid
-/// parameters.
+use sky_core::aoas::{AoasSky, DayCycle, Preset, Scattering, Style};
+use sky_core::neural::{NeuralWeights, pretrained};
+use sky_core::sh::ShSky;
+use sky_core::{NeuralSky, PreethamSky, Sun, Vec3, color, geom};
+use wasm_bindgen::prelude::*;
+
+use projection::{Kind, Projection};
+use srgb8::Srgb8;
+
+/// Directions evaluated together: a multiple of every sky-core batch width (8 and 32).
+const CHUNK: usize = 256;
+
+/// The mean luminance automatic exposure maps to (middle grey), as `sky-train render` does.
+const MIDDLE_GREY: f32 = 0.18;
+
+/// Side of the fisheye whose pixels (equal solid angles) average the sky for
+/// [`Sky::auto_exposure`]: 32 × 32 gives 812 directions.
+const EXPOSURE_GRID: u32 = 32;
+
+fn js_error(e: impl core::fmt::Display) -> JsError {
+    JsError::new(&e.to_string())
+}
+
+/// The model behind a [`Sky`].
+// One per JavaScript `Sky`: 424 bytes are nothing to save; the AOAS sky (its style holds up to 64
+// cloud segments) is boxed.
+#[allow(clippy::large_enum_variant)]
+#[derive(Debug, Clone)]
+enum Model {
+    Preetham(PreethamSky),
+    Neural(NeuralSky),
+    Aoas(Box<AoasSky>),
+    Sh(Box<ShSky>),
+}
+
+// Not inlined: each call site would hold its own copy of every model's kernels (the .wasm
+// has a 200 KB budget); a call per direction or per chunk of 256 costs nothing measurable.
+impl Model {
+    #[inline(never)]
+    fn rgb(&self, dir: Vec3) -> Vec3 {
+        match self {
+            Self::Preetham(s) => s.rgb(dir),
+            Self::Neural(s) => s.rgb(dir),
+            Self::Aoas(s) => s.rgb(dir),
+            Self::Sh(s) => s.radiance(dir),
+        }
+    }
+
+    #[inline(never)]
+    fn rgb_batch(&self, dirs: &[Vec3], out: &mut [Vec3]) {
+        match self {
+            Self::Preetham(s) => s.rgb_batch(dirs, out),
+            Self::Neural(s) => s.rgb_batch(dirs, out),
+            Self::Aoas(s) => s.rgb_batch(dirs, out),
+            Self::Sh(s) => {
+                for (o, d) in out.iter_mut().zip(dirs) {
+                    *o = s.radiance(*d);
+                }
+            }
+        }
+    }
+}
+
+/// A sky of one of sky-core's models, for one sun (and turbidity or style).
+#[wasm_bindgen]
+#[derive(Debug, Clone)]
+pub struct Sky {
+    model: Model,
+    sun: Sun,
+}
+
+#[wasm_bindgen]
+impl Sky {
+    /// The Preetham sky (Perez distribution with Preetham's coefficients) for a sun at
+    /// `sun_zenith` in [0, π/2] and `sun_azimuth` (radians) and `turbidity` in [2, 6].
+    ///
+    /// # Errors
+    /// sky-core's message for a parameter out of range.
+    pub fn preetham(sun_zenith: f32, sun_azimuth: f32, turbidity: f32) -> Result<Sky, JsError> {
+        let sun = Sun::new(sun_zenith, sun_azimuth).map_err(js_error)?;
+        let sky = PreethamSky::new(sun, turbidity).map_err(js_error)?;
+        Ok(Self {
+            model: Model::Preetham(sky),
+            sun,
+        })
+    }
+
+    /// The neural sky with the shipped weights `weights` ("preetham": trained on the Preetham
+    /// sky, turbidity 2-6; "hosek": on the Hosek-Wilkie sky, turbidity 1-10), for a sun at
+    /// `sun_zenith` in [0, π/2] and `sun_azimuth` (radians) and `turbidity`.
+    ///
+    /// # Errors
+    /// An unknown weights name, or sky-core's message for a parameter out of the trained range.
+    pub fn neural(
+        weights: &str,
+        sun_zenith: f32,
+        sun_azimuth: f32,
+        turbidity: f32,
+    ) -> Result<Sky, JsError> {
+        let weights = match weights {
+            "preetham" => &pretrained::PREETHAM,
+            "hosek" => &pretrained::HOSEK,
+            other => {
+                return Err(JsError::new(&format!(
+                    "weights = \"{other}\" is not a shipped neural sky (\"preetham\" or \"hosek\")"
+                )));
+            }
+        };
+        Self::neural_with(weights, sun_zenith, sun_azimuth, turbidity)
+    }
+
+    /// The neural sky of a weight file (sky-core's format, as `sky-train train` writes it) for
+    /// a sun at `sun_zenith` and `sun_azimuth` (radians) and `turbidity`.
+    ///
+    /// # Errors
+    /// sky-core's message for a malformed file or a parameter out of the trained range.
+    #[wasm_bindgen(js_name = neuralFromBytes)]
+    pub fn neural_from_bytes(
+        bytes: &[u8],
+        sun_zenith: f32,
+        sun_azimuth: f32,
+        turbidity: f32,
+    ) -> Result<Sky, JsError> {
+        let weights = NeuralWeights::<12>::decode(bytes).map_err(js_error)?;
+        Self::neural_with(&weights, sun_zenith, sun_azimuth, turbidity)
+    }
+
+    fn neural_with(
+        weights: &NeuralWeights,
+        sun_zenith: f32,
+        sun_azimuth: f32,
+        turbidity: f32,
+    ) -> Result<Sky, JsError> {
+        let sun = Sun::new(sun_zenith, sun_azimuth).map_err(js_error)?;
+        let sky = NeuralSky::new(weights, sun, turbidity).map_err(js_error)?;
+        Ok(Self {
+            model: Model::Neural(sky),
+            sun,
+        })
+    }
+
+    /// The AOAS sky (O'Neil's single scattering with seed 004's aesthetic principles) of the
+    /// style preset `preset` (see [`aoas_presets`]), with the preset's own sun.
+    ///
+    /// # Errors
+    /// An unknown preset name.
+    pub fn aoas(preset: &str) -> Result<Sky, JsError> {
+        Self::aoas_sky(&Self::preset(preset)?)
+    }
+
+    /// The AOAS sky of the style preset `preset` with the sun moved to `sun_zenith` in
+    /// [0, π/2] and `sun_azimuth` (radians).
+    ///
+    /// # Errors
+    /// An unknown preset name, or sky-core's message for a sun out of range.
+    #[wasm_bindgen(js_name = aoasWithSun)]
+    pub fn aoas_with_sun(preset: &str, sun_zenith: f32, sun_azimuth: f32) -> Result<Sky, JsError> {
+        let mut style = Self::preset(preset)?;
+        style.day_cycle = DayCycle::Sun(Sun::new(sun_zenith, sun_azimuth).map_err(js_error)?);
+        Self::aoas_sky(&style)
+    }
+
+    fn preset(name: &str) -> Result<Style, JsError> {
+        Preset::from_name(name).map(Preset::style).ok_or_else(|| {
+            JsError::new(&format!(
+                "preset = \"{name}\" is not an AOAS style preset (one of: {})",
+                aoas_presets().join(", ")
+            ))
+        })
+    }
+
+    fn aoas_sky(style: &Style) -> Result<Sky, JsError> {
+        let sky = AoasSky::new(&Scattering::default(), style).map_err(js_error)?;
+        Ok(Self {
+            sun: sky.sun(),
+            model: Model::Aoas(Box::new(sky)),
+        })
+    }
+
+    /// The spherical-harmonics lighting of the Preetham sky (seed 001: polynomial tables in sun
+    /// zenith and turbidity, ringing filter, rotation to the sun's azimuth) with `bands` bands
+    /// (1 to 7), for a sun at `sun_zenith` in [0, π/2] and `sun_azimuth` (radians) and
+    /// `turbidity` in the tables' range [2.5, 6]. Its `rgb` is the SH radiance; a sphere lit by
+    /// it is drawn by [`Renderer::sphere`].
+    ///
+    /// # Errors
+    /// sky-core's message for a parameter out of range.
+    pub fn sh(
+        sun_zenith: f32,
+        sun_azimuth: f32,
+        turbidity: f32,
+        bands: u32,
+    ) -> Result<Sky, JsError> {
+        let sun = Sun::new(sun_zenith, sun_azimuth).map_err(js_error)?;
+        let sky = ShSky::new(sun, turbidity, bands as usize).map_err(js_error)?;
+        Ok(Self {
+            model: Model::Sh(Box::new(sky)),
+            sun,
+        })
+    }
+
+    /// The model's name: "preetham", "neural", "aoas" or "sh".
+    #[wasm_bindgen(getter)]
+    #[must_use]
+    pub fn model(&self) -> String {
+        match self.model {
+            Model::Preetham(_) => "preetham",
+            Model::Neural(_) => "neural",
+            Model::Aoas(_) => "aoas",
+            Model::Sh(_) => "sh",
+        }
+        .into()
+    }
+
+    /// The sun's zenith angle in radians.
+    #[wasm_bindgen(getter, js_name = sunZenith)]
+    #[must_use]
+    pub fn sun_zenith(&self) -> f32 {
+        self.sun.zenith()
+    }
+
+    /// The sun's azimuth in radians.
+    #[wasm_bindgen(getter, js_name = sunAzimuth)]
+    #[must_use]
+    pub fn sun_azimuth(&self) -> f32 {
+        self.sun.azimuth()
+    }
+
+    /// Linear RGB `[r, g, b]` towards the view direction with zenith angle `view_zenith` and
+    /// azimuth `view_azimuth` (radians), in the model's units; exactly sky-core's `rgb` of
+    /// `geom::direction(view_zenith, view_azimuth)`.
+    #[must_use]
+    pub fn rgb(&self, view_zenith: f32, view_azimuth: f32) -> Vec<f32> {
+        self.model
+            .rgb(geom::direction(view_zenith, view_azimuth))
+            .to_array()
+            .to_vec()
+    }
+
+    /// The exposure (a factor on linear RGB) that maps this sky's mean luminance over the upper
+    /// hemisphere to middle grey (0.18), as `sky-train render` exposes PNGs; 1 for a black sky.
+    #[wasm_bindgen(js_name = autoExposure)]
+    #[must_use]
+    pub fn auto_exposure(&self) -> f32 {
+        let Ok(grid) = Projection::new(Kind::Fisheye, EXPOSURE_GRID, EXPOSURE_GRID) else {
+            return 1.0;
+        };
+        let mut rgb = vec![Vec3::ZERO; grid.directions().len()];
+        self.model.rgb_batch(grid.directions(), &mut rgb);
+        let sum: f32 = rgb.iter().map(|&c| color::luminance(c)).sum();
+        #[allow(clippy::cast_precision_loss)] // below 2^24
+        let mean = sum / rgb.len() as f32;
+        if mean > 0.0 && mean.is_finite() {
+            MIDDLE_GREY / mean
+        } else {
+            1.0
+        }
+    }
+}
+
+/// The AOAS style presets' names, in the order of the README's strip.
+#[wasm_bindgen(js_name = aoasPresets)]
 #[must_use]
-pub fn preetham_rgb(
-    sun_zenith: f32,
-    sun_azimuth: f32,
-    turbidity: f32,
-    view_zenith: f32,
-    view_azimuth: f32,
-) -> Option<[f32; 3]> {
-    let sun = sky_core::Sun::new(sun_zenith, sun_azimuth).ok()?;
-    let sky = sky_core::PreethamSky::new(sun, turbidity).ok()?;
-    Some(
-        sky.rgb(sky_core::geom::direction(view_zenith, view_azimuth))
-            .to_array(),
-    )
+pub fn aoas_presets() -> Vec<String> {
+    Preset::ALL.iter().map(|p| p.name().to_owned()).collect()
+}
+
+/// An image of the sky (a fisheye dome or a panorama) of a fixed size; renders any [`Sky`].
+///
+/// The image is computed into buffers inside the WebAssembly memory and copied into the
+/// caller's typed array once per call.
+#[wasm_bindgen]
+#[derive(Debug, Clone)]
+pub struct Renderer {
+    projection: Projection,
+    table: Srgb8,
+    /// RGBA bytes of the last sRGB frame; pixels outside the projection stay 0.
+    srgb: Vec<u8>,
+    /// RGB floats of the last linear frame; pixels outside the projection stay 0.
+    linear: Vec<f32>,
+}
+
+#[wasm_bindgen]
+impl Renderer {
+    /// A `width` × `height` fisheye of the upper hemisphere: the disc inscribed in the image,
+    /// seen from below (zenith in the centre, north up, east left), Lambert's equal-area
+    /// projection (every pixel covers the same solid angle). Pixels outside the disc are
+    /// transparent black.
+    ///
+    /// # Errors
+    /// A width or height of 0 or above 4096.
+    pub fn fisheye(width: u32, height: u32) -> Result<Renderer, JsError> {
+        Self::new(Kind::Fisheye, width, height)
+    }
+
+    /// A `width` × `height` panorama of the upper hemisphere: azimuth 0 to 2π from left to
+    /// right, the zenith along the top row and the horizon along the bottom.
+    ///
+    /// # Errors
+    /// A width or height of 0 or above 4096.
+    pub fn panorama(width: u32, height: u32) -> Result<Renderer, JsError> {
+        Self::new(Kind::Panorama, width, height)
+    }
+
+    /// A `size` × `size` image of a white diffuse sphere (albedo 1) lit by an SH sky
+    /// ([`Sky::sh`]), seen from the south looking north: east right, the zenith up. Each pixel
+    /// is the sphere's radiance E(n)/π for its normal n, with E sky-core's SH irradiance
+    /// (seed 001's clamped-cosine convolution), on the sky's radiance scale. Pixels off the
+    /// sphere are transparent black.
+    ///
+    /// # Errors
+    /// A size of 0 or above 4096.
+    pub fn sphere(size: u32) -> Result<Renderer, JsError> {
+        Self::new(Kind::Sphere, size, size)
+    }
+
+    fn new(kind: Kind, width: u32, height: u32) -> Result<Renderer, JsError> {
+        let projection = Projection::new(kind, width, height).map_err(js_error)?;
+        let n = projection.pixel_count();
+        Ok(Self {
+            projection,
+            table: Srgb8::new(),
+            srgb: vec![0; n * 4],
+            linear: Vec::new(),
+        })
+    }
+
+    /// Image width in pixels.
+    #[wasm_bindgen(getter)]
+    #[must_use]
+    pub fn width(&self) -> u32 {
+        self.projection.size().0
+    }
+
+    /// Image height in pixels.
+    #[wasm_bindgen(getter)]
+    #[must_use]
+    pub fn height(&self) -> u32 {
+        self.projection.size().1
+    }
+
+    fn check_len(&self, len: u32, per_pixel: usize, what: &str) -> Result<(), JsError> {
+        let want = self.projection.pixel_count() * per_pixel;
+        if len as usize == want {
+            Ok(())
+        } else {
+            Err(JsError::new(&format!(
+                "{what} has length {len}, but a {}x{} image needs {want} ({per_pixel} per pixel)",
+                self.width(),
+                self.height()
+            )))
+        }
+    }
+
+    /// Renders `sky` as 8-bit sRGB RGBA into `out` (a `Uint8ClampedArray` of width × height × 4
+    /// bytes, row-major, such as a canvas `ImageData`'s `data`), after multiplying linear RGB by
+    /// `exposure` (see [`Sky::auto_exposure`]). Values above 1 clip to white.
+    ///
+    /// # Errors
+    /// `out` of the wrong length.
+    #[wasm_bindgen(js_name = renderSrgb)]
+    pub fn render_srgb(
+        &mut self,
+        sky: &Sky,
+        out: &js_sys::Uint8ClampedArray,
+        exposure: f32,
+    ) -> Result<(), JsError> {
+        self.check_len(out.length(), 4, "out")?;
+        let lit_sphere = match (&sky.model, self.projection.kind()) {
+            (Model::Sh(sh), Kind::Sphere) => Some(sh),
+            (_, Kind::Sphere) => {
+                return Err(JsError::new(
+                    "the sphere is lit by a spherical-harmonics sky: build it with Sky.sh",
+                ));
+            }
+            _ => None,
+        };
+        let mut rgb = [Vec3::ZERO; CHUNK];
+        let p = &self.projection;
+        for (dirs, pixels) in p.directions().chunks(CHUNK).zip(p.pixels().chunks(CHUNK)) {
+            let rgb = &mut rgb[..dirs.len()];
+            match lit_sphere {
+                Some(sh) => {
+                    for (o, n) in rgb.iter_mut().zip(dirs) {
+                        *o = sh.irradiance(*n) * core::f32::consts::FRAC_1_PI;
+                    }
+                }
+                None => sky.model.rgb_batch(dirs, rgb),
+            }
+            write_srgb(&self.table, &mut self.srgb, pixels, rgb, exposure);
+        }
+        out.copy_from(&self.srgb);
+        Ok(())
+    }
+
+    /// Renders |`a` − `b`| per channel (linear) times `exposure` as 8-bit sRGB RGBA into `out`
+    /// (as [`render_srgb`](Self::render_srgb)): black where the two skies agree.
+    ///
+    /// # Errors
+    /// `out` of the wrong length.
+    #[wasm_bindgen(js_name = renderDifferenceSrgb)]
+    pub fn render_difference_srgb(
+        &mut self,
+        a: &Sky,
+        b: &Sky,
+        out: &js_sys::Uint8ClampedArray,
+        exposure: f32,
+    ) -> Result<(), JsError> {
+        self.check_len(out.length(), 4, "out")?;
+        let (mut rgb_a, mut rgb_b) = ([Vec3::ZERO; CHUNK], [Vec3::ZERO; CHUNK]);
+        let p = &self.projection;
+        for (dirs, pixels) in p.directions().chunks(CHUNK).zip(p.pixels().chunks(CHUNK)) {
+            let (rgb_a, rgb_b) = (&mut rgb_a[..dirs.len()], &mut rgb_b[..dirs.len()]);
+            a.model.rgb_batch(dirs, rgb_a);
+            b.model.rgb_batch(dirs, rgb_b);
+            for (x, y) in rgb_a.iter_mut().zip(rgb_b.iter()) {
+                *x = (*x - *y).abs();
+            }
+            write_srgb(&self.table, &mut self.srgb, pixels, rgb_a, exposure);
+        }
+        out.copy_from(&self.srgb);
+        Ok(())
+    }
+
+    /// Renders `sky` as linear RGB into `out` (a `Float32Array` of width × height × 3 floats,
+    /// row-major, the model's units); pixels outside the fisheye's disc are 0.
+    ///
+    /// # Errors
+    /// `out` of the wrong length.
+    #[wasm_bindgen(js_name = renderLinear)]
+    pub fn render_linear(&mut self, sky: &Sky, out: &js_sys::Float32Array) -> Result<(), JsError> {
+        self.check_len(out.length(), 3, "out")?;
+        self.linear.resize(self.projection.pixel_count() * 3, 0.0);
+        let mut rgb = [Vec3::ZERO; CHUNK];
+        let p = &self.projection;
+        for (dirs, pixels) in p.directions().chunks(CHUNK).zip(p.pixels().chunks(CHUNK)) {
+            let rgb = &mut rgb[..dirs.len()];
+            sky.model.rgb_batch(dirs, rgb);
+            for (c, &pixel) in rgb.iter().zip(pixels) {
+                let at = pixel as usize * 3;
+                if let Some(px) = self.linear.get_mut(at..at + 3) {
+                    px.copy_from_slice(&c.to_array());
+                }
+            }
+        }
+        out.copy_from(&self.linear);
+        Ok(())
+    }
+}
+
+/// Writes the 8-bit sRGB RGBA of `rgb` × `exposure` at `pixels` in `out`.
+#[inline(always)]
+fn write_srgb(table: &Srgb8, out: &mut [u8], pixels: &[u32], rgb: &[Vec3], exposure: f32) {
+    for (c, &pixel) in rgb.iter().zip(pixels) {
+        let c = *c * exposure;
+        let at = pixel as usize * 4;
+        if let Some(px) = out.get_mut(at..at + 4) {
+            px.copy_from_slice(&[table.encode(c.x), table.encode(c.y), table.encode(c.z), 255]);
+        }
+    }
 }

@@ -1,0 +1,116 @@
+#!/usr/bin/env bash
+# sky-wasm: the WebAssembly build, the demo site and its tests.
+#
+#   scripts/wasm.sh build [DIR]   build the .wasm (profile wasm-release, simd128), run wasm-bindgen
+#                                 (web + TypeScript types; node bindings for the tests) and write
+#                                 the demo site to DIR (default target/wasm/site)
+#   scripts/wasm.sh serve [PORT]  serve the built site on http://127.0.0.1:PORT/ (default 8000)
+#   scripts/wasm.sh test          build, then the node tests (parity with native sky-core for
+#                                 every model, the API's errors) and the browser tests (the demo
+#                                 in Debian's chromium through playwright-core; prints the frame
+#                                 times the demo measures; screenshot in target/wasm/artifacts)
+#   scripts/wasm.sh bench         build the shipped .wasm (opt-level 3, simd128) and two peers
+#                                 (no simd128; opt-level "s") and print their sizes and frame
+#                                 times measured in one node run (not part of the test command)
+#
+# The wasm32 toolchain is Debian's rustc-web with -Zbuild-std (shared/DESIGN.md, "Toolchains"),
+# configured in scripts/wasm/config.toml; its output goes to target/wasm, apart from the host build.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+out="$root/target/wasm"
+site_default="$out/site"
+bindgen="$root/.tools/wasm-bindgen/bin/wasm-bindgen"
+step() { printf '\n==> %s\n' "$*"; }
+
+# compile_wasm TARGET_DIR [CARGO_ARGS...]: sky-wasm for wasm32, profile wasm-release.
+compile_wasm() {
+  local dir=$1
+  shift
+  # Cargo honours [unstable] build-std only when it sees this in its own environment.
+  export RUSTC_BOOTSTRAP=1
+  local lld
+  lld="$(rustc --print sysroot)/lib/rustlib/x86_64-unknown-linux-gnu/bin/rust-lld"
+  (cd "$root" && cargo build -p sky-wasm --lib --locked --target wasm32-unknown-unknown \
+    --profile wasm-release --target-dir "$dir" --config "$root/scripts/wasm/config.toml" \
+    --config "target.wasm32-unknown-unknown.linker='$lld'" "$@")
+}
+simd128=(--config "target.wasm32-unknown-unknown.rustflags=['-C','target-feature=+simd128']")
+
+build() {
+  local site=${1:-$site_default}
+  step "setup"
+  "$root/scripts/setup.sh"
+
+  step "sky-wasm: build for wasm32-unknown-unknown (profile wasm-release, simd128)"
+  compile_wasm "$out" "${simd128[@]}"
+  local wasm="$out/wasm32-unknown-unknown/wasm-release/sky_wasm.wasm"
+
+  step "wasm-bindgen: the site's module and TypeScript types, and node bindings for the tests"
+  rm -rf "$site.tmp" "$out/node"
+  mkdir -p "$site.tmp"
+  cp -r "$root/sky-wasm/www/." "$site.tmp/"
+  # The name section (function names for stack traces) is a fifth of the file: left out.
+  "$bindgen" --target web --remove-name-section --out-dir "$site.tmp/pkg" "$wasm"
+  "$bindgen" --target nodejs --remove-name-section --out-dir "$out/node" "$wasm"
+  rm -rf "$site"
+  mv "$site.tmp" "$site"
+
+  step "size of the .wasm (every model: Preetham, neural with both weight sets, AOAS, SH)"
+  local bytes gz
+  bytes=$(stat -c %s "$site/pkg/sky_wasm_bg.wasm")
+  gz=$(gzip -9c "$site/pkg/sky_wasm_bg.wasm" | wc -c)
+  # Measured and printed, not asserted: the goal (200 KB) is not reached with the SH tables.
+  awk -v b="$bytes" -v g="$gz" 'BEGIN {
+    printf "sky_wasm_bg.wasm: %d bytes (%.1f KB; %.1f KB gzipped); goal at most 200 KB: %s\n",
+      b, b / 1000, g / 1000, (b <= 200000 ? "met" : "NOT met") }'
+  echo "site written to $site"
+}
+
+serve() {
+  local port=${1:-8000}
+  if [ ! -f "$site_default/pkg/sky_wasm_bg.wasm" ]; then
+    echo "no site in $site_default: run scripts/wasm.sh build first" >&2
+    exit 1
+  fi
+  echo "serving $site_default on http://127.0.0.1:$port/ (Ctrl-C stops)"
+  exec python3 -m http.server "$port" --bind 127.0.0.1 --directory "$site_default"
+}
+
+run_tests() {
+  build
+  step "native sky-core values for the parity tests"
+  (cd "$root" && cargo run -q --locked -p sky-wasm --example native_values) >"$out/native_values.json"
+
+  step "node: the wasm-bindgen build against native sky-core, and its API"
+  (cd "$root/sky-wasm" && SKY_WASM_NODE_PKG="$out/node/sky_wasm.js" \
+    SKY_NATIVE_VALUES="$out/native_values.json" node --test tests/node/)
+
+  step "browser: the demo in Debian's chromium (playwright-core)"
+  (cd "$root/sky-wasm" && SKY_WASM_SITE="$site_default" SKY_WASM_ARTIFACTS="$out/artifacts" \
+    node --test --test-reporter=spec tests/browser/)
+}
+
+bench() {
+  build
+  step "peers: opt-level 3 without simd128, opt-level \"s\" with simd128"
+  compile_wasm "$out/peer-nosimd"
+  compile_wasm "$out/peer-size" "${simd128[@]}" --config 'profile.wasm-release.opt-level="s"'
+  for peer in peer-nosimd peer-size; do
+    "$bindgen" --target nodejs --remove-name-section --out-dir "$out/$peer/node" \
+      "$out/$peer/wasm32-unknown-unknown/wasm-release/sky_wasm.wasm"
+  done
+  step "frame times, one node run"
+  node "$root/sky-wasm/bench/frames.mjs" "shipped(O3,simd128)=$out/node/sky_wasm.js" \
+    "O3,no-simd=$out/peer-nosimd/node/sky_wasm.js" "Os,simd128=$out/peer-size/node/sky_wasm.js"
+}
+
+case "${1:-}" in
+  build) shift; build "$@" ;;
+  serve) shift; serve "$@" ;;
+  test) run_tests ;;
+  bench) bench ;;
+  *)
+    echo "usage: scripts/wasm.sh build [DIR] | serve [PORT] | test | bench" >&2
+    exit 2
+    ;;
+esac

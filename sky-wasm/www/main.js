@@ -1,0 +1,192 @@
+// The demo: every control redraws on `input`, so the image follows a slider while it is dragged.
+// Each view is one call into WebAssembly that fills a canvas's ImageData.
+import init, { Sky, Renderer, aoasPresets } from "./pkg/sky_wasm.js";
+
+await init();
+
+const $ = (id) => document.getElementById(id);
+const DEG = Math.PI / 180;
+
+/** A canvas with a renderer of its size and an ImageData to fill. */
+function view(id, make) {
+  const canvas = $(id);
+  const { width, height } = canvas;
+  return {
+    canvas,
+    ctx: canvas.getContext("2d"),
+    renderer: make(width, height),
+    image: new ImageData(width, height),
+    other: new ImageData(width, height),
+  };
+}
+
+const dome = view("dome", Renderer.fisheye);
+const panorama = view("panorama", Renderer.panorama);
+const sphere = view("sphere", (size) => Renderer.sphere(size));
+/** Bands of the SH sky: 5 is where its irradiance is within 1 % (sky-core's docs). */
+const SH_BANDS = 5;
+/** The turbidities the SH tables were fitted for. */
+const SH_TURBIDITY = [2.5, 6];
+
+for (const name of aoasPresets()) $("preset").add(new Option(name, name));
+
+const TURBIDITY_RANGE = { "neural-hosek": [1, 10], aoas: null, sh: SH_TURBIDITY };
+
+function readControls() {
+  return {
+    model: $("model").value,
+    view: $("view").value,
+    sunZenith: Number($("sun-zenith").value) * DEG,
+    sunAzimuth: Number($("sun-azimuth").value) * DEG,
+    turbidity: Number($("turbidity").value),
+    preset: $("preset").value,
+    ev: Number($("exposure").value),
+  };
+}
+
+function makeSky(model, p) {
+  switch (model) {
+    case "preetham": return Sky.preetham(p.sunZenith, p.sunAzimuth, p.turbidity);
+    case "neural-preetham": return Sky.neural("preetham", p.sunZenith, p.sunAzimuth, p.turbidity);
+    case "neural-hosek": return Sky.neural("hosek", p.sunZenith, p.sunAzimuth, p.turbidity);
+    case "aoas": return Sky.aoasWithSun(p.preset, p.sunZenith, p.sunAzimuth);
+    case "sh": return Sky.sh(p.sunZenith, p.sunAzimuth, p.turbidity, SH_BANDS);
+    default: throw new Error(`unknown model ${model}`);
+  }
+}
+
+/** The skies a frame shows: one, or the neural sky and its reference for the split and
+ * difference views. The exposure is the shown (or reference) sky's automatic one. */
+function makeFrame(p) {
+  if (p.view === "single") {
+    const sky = makeSky(p.model, p);
+    return { skies: [sky], exposure: sky.autoExposure() * 2 ** p.ev };
+  }
+  const neural = makeSky("neural-preetham", p);
+  const reference = makeSky("preetham", p);
+  return { skies: [neural, reference], exposure: reference.autoExposure() * 2 ** p.ev };
+}
+
+function drawView(v, frame, mode) {
+  const [a, b] = frame.skies;
+  if (mode === "difference") {
+    v.renderer.renderDifferenceSrgb(a, b, v.image.data, frame.exposure * 8);
+    v.ctx.putImageData(v.image, 0, 0);
+  } else if (mode === "split") {
+    v.renderer.renderSrgb(a, v.image.data, frame.exposure);
+    v.renderer.renderSrgb(b, v.other.data, frame.exposure);
+    const half = v.image.width >> 1;
+    v.ctx.putImageData(v.image, 0, 0, 0, 0, half, v.image.height);
+    v.ctx.putImageData(v.other, 0, 0, half, 0, v.image.width - half, v.image.height);
+  } else {
+    v.renderer.renderSrgb(a, v.image.data, frame.exposure);
+    v.ctx.putImageData(v.image, 0, 0);
+  }
+}
+
+/** One frame as a person sees it while dragging: build the sky, expose it, draw the dome.
+ * Returns the milliseconds this took. */
+function drawDome(p) {
+  const t0 = performance.now();
+  const frame = makeFrame(p);
+  try {
+    drawView(dome, frame, p.view);
+  } catch (e) {
+    frame.skies.forEach((s) => s.free());
+    throw e;
+  }
+  const ms = performance.now() - t0;
+  return { ms, frame };
+}
+
+function syncControls(p) {
+  const range = p.model in TURBIDITY_RANGE ? TURBIDITY_RANGE[p.model] : [2, 6];
+  const t = $("turbidity");
+  t.disabled = range === null;
+  if (range) [t.min, t.max] = range;
+  $("preset").disabled = p.model !== "aoas";
+  $("sun-zenith-value").value = $("sun-zenith").value;
+  $("sun-azimuth-value").value = $("sun-azimuth").value;
+  $("turbidity-value").value = range === null ? "n/a" : t.value;
+  $("exposure-value").value = $("exposure").value;
+}
+
+/** The sphere, lit by the SH sky of the same sun (the tables' turbidity range, 2.5-6). */
+function drawSphere(p) {
+  const [lo, hi] = SH_TURBIDITY;
+  const turbidity = Math.min(hi, Math.max(lo, p.turbidity));
+  const sh = Sky.sh(p.sunZenith, p.sunAzimuth, turbidity, SH_BANDS);
+  try {
+    sphere.renderer.renderSrgb(sh, sphere.image.data, sh.autoExposure() * 2 ** p.ev);
+    sphere.ctx.putImageData(sphere.image, 0, 0);
+  } finally {
+    sh.free();
+  }
+  $("sphere-caption").textContent =
+    `a white sphere lit by the Preetham sky's spherical harmonics (${SH_BANDS} bands, turbidity ${turbidity}), seen from the south`;
+}
+
+function draw() {
+  const p = readControls();
+  syncControls(p);
+  try {
+    const { ms, frame } = drawDome(p);
+    drawView(panorama, frame, p.view);
+    frame.skies.forEach((s) => s.free());
+    drawSphere(p);
+    $("frame-ms").textContent = ms.toFixed(2);
+    $("error").textContent = "";
+  } catch (e) {
+    $("error").textContent = e.message;
+  }
+}
+
+let pending = false;
+function requestDraw() {
+  if (pending) return;
+  pending = true;
+  requestAnimationFrame(() => {
+    pending = false;
+    draw();
+  });
+}
+
+/** The readout the browser test records: the median over 60 dome frames, the sun's azimuth
+ * stepping by 1° per frame as if a person were dragging its slider. */
+async function measure() {
+  const p = readControls();
+  const times = [];
+  for (let i = 0; i < 60; i++) {
+    const { ms, frame } = drawDome({ ...p, sunAzimuth: p.sunAzimuth + i * DEG });
+    frame.skies.forEach((s) => s.free());
+    times.push(ms);
+    await new Promise((resolve) => requestAnimationFrame(resolve));
+  }
+  times.sort((x, y) => x - y);
+  const median = (times[29] + times[30]) / 2;
+  const out = $("measured");
+  out.dataset.model = p.view === "single" ? p.model : p.view;
+  out.dataset.medianMs = median.toFixed(3);
+  out.textContent = `${out.dataset.model}: median ${median.toFixed(2)} ms/frame ` +
+    `(min ${times[0].toFixed(2)}, max ${times[59].toFixed(2)}; 60 frames, 512×512 dome)`;
+  draw();
+}
+
+$("preset").addEventListener("input", () => {
+  // A preset brings its own sun (sunrise, sunset): move the sliders there.
+  try {
+    const sky = Sky.aoas($("preset").value);
+    $("sun-zenith").value = (sky.sunZenith / DEG).toFixed(1);
+    $("sun-azimuth").value = (((sky.sunAzimuth / DEG) % 360 + 360) % 360).toFixed(0);
+    sky.free();
+  } catch (e) {
+    $("error").textContent = e.message;
+  }
+  requestDraw();
+});
+for (const id of ["model", "view", "sun-zenith", "sun-azimuth", "turbidity", "exposure"]) {
+  $(id).addEventListener("input", requestDraw);
+}
+$("measure").addEventListener("click", measure);
+document.body.dataset.ready = "true";
+draw();
