@@ -64,6 +64,7 @@
 //! | correlated colour temperature and Duv (ANSI C78.377 sign) | [`cct`] |
 //! | the sky at any sun elevation, twilight and night included | [`twilight::Daylight`] |
 //! | LED channel levels (RGB, RGBW, warm + cool white), hue-keeping gamut clipping, PWM quantisation | [`led`] |
+//! | all of these for one time and place, as `sky-train schedule` and the firmware compute it | [`controller::step`] |
 //!
 //! ```
 //! use sky_core::solar::{Site, SunPosition, UtcTime};
@@ -114,6 +115,7 @@
 pub mod aoas;
 pub mod cct;
 pub mod color;
+pub mod controller;
 mod error;
 pub mod geom;
 pub mod led;

@@ -5,26 +5,11 @@
 use std::io::{BufRead, Write};
 
 use anyhow::{Context, Result, bail};
-use sky_core::color::Xyy;
-use sky_core::led::{Channel, Luminaire};
-use sky_core::photometry::Photometry;
-use sky_core::solar::{Site, SunPosition, UtcTime};
-use sky_core::twilight::Daylight;
-use sky_core::{Vec3, cct};
+use sky_core::cct;
+use sky_core::controller::{example_luminaire, step};
+use sky_core::solar::{Site, UtcTime};
 
 use crate::sources::ParamError;
-
-/// The example RGBW luminaire of the schedule: typical LED chromaticities (red 625 nm, green
-/// 525 nm, royal blue 450 nm, a 3000 K white) and outputs in lumens.
-pub fn example_luminaire() -> Result<Luminaire<4>> {
-    let ch = |x, y, full_output| Channel { x, y, full_output };
-    Ok(Luminaire::rgbw(
-        ch(0.700, 0.295, 300.0),
-        ch(0.170, 0.700, 600.0),
-        ch(0.135, 0.060, 100.0),
-        ch(0.4369, 0.4041, 900.0),
-    )?)
-}
 
 /// What `schedule` needs.
 #[derive(Debug, Clone, Copy)]
@@ -83,7 +68,6 @@ pub fn schedule(config: &ScheduleConfig, output: &mut dyn Write) -> Result<()> {
     let site = Site::new(config.latitude, config.longitude, config.elevation)
         .map_err(|e| ParamError(format!("--lat/--lon/--elevation: {e}")))?;
     let lamp = example_luminaire()?;
-    let full_output: f32 = lamp.channels().iter().map(|c| c.full_output).sum();
     let (year, month, day) = config.date;
     writeln!(output, "{SCHEDULE_HEADER}")?;
     let mut minute = 0u32;
@@ -91,19 +75,10 @@ pub fn schedule(config: &ScheduleConfig, output: &mut dyn Write) -> Result<()> {
         let (hour, min) = (minute / 60, minute % 60);
         let time = UtcTime::new(year, month, day, hour, min, 0.0)
             .map_err(|e| ParamError(format!("--date: {e}")))?;
-        let sun = SunPosition::new(&time, &site)?;
-        let sky = Daylight::new(sun.sun(), config.turbidity)
-            .map_err(|e| ParamError(format!("--turbidity: {e}")))?;
-        let e = sky.horizontal_illuminance();
-        let colour = chromaticity(e);
-        let c = cct::cct_duv(colour.x, colour.y).with_context(|| {
-            format!("CCT of the sky at {year:04}-{month:02}-{day:02}T{hour:02}:{min:02}")
-        })?;
-        let target = Xyy {
-            luminance: full_output * e.y / config.full_scale_lux,
-            ..colour
-        };
-        let levels = lamp.drive(target).levels;
+        let s = step(&time, &site, config.turbidity, config.full_scale_lux, &lamp).with_context(
+            || format!("schedule at {year:04}-{month:02}-{day:02}T{hour:02}:{min:02} (--turbidity, --full-scale-lux)"),
+        )?;
+        let (sun, c, e, levels) = (s.sun, s.cct, s.illuminance, s.drive.levels);
         writeln!(
             output,
             "{year:04}-{month:02}-{day:02}T{hour:02}:{min:02}:00Z,{:.5},{:.5},{:.5},{:.5},{:.2},{:.6},{:.6e},{:.6},{:.6},{:.6},{:.6}",
@@ -122,10 +97,6 @@ pub fn schedule(config: &ScheduleConfig, output: &mut dyn Write) -> Result<()> {
         minute += config.step_minutes;
     }
     Ok(())
-}
-
-fn chromaticity(xyz: Vec3) -> Xyy {
-    sky_core::color::xyz_to_xyy(xyz)
 }
 
 /// Reads `x,y` lines (a header line is allowed; blank lines are skipped) and writes
