@@ -65,6 +65,13 @@ pub fn parse_date(s: &str) -> Result<(i32, u32, u32), ParamError> {
 /// # Errors
 /// Bad parameters as a [`ParamError`]; a failed write.
 pub fn schedule(config: &ScheduleConfig, output: &mut dyn Write) -> Result<()> {
+    if !(1..=24 * 60).contains(&config.step_minutes) {
+        return Err(ParamError(format!(
+            "--step {} minutes is outside the valid range [1, 1440]",
+            config.step_minutes
+        ))
+        .into());
+    }
     let site = Site::new(config.latitude, config.longitude, config.elevation)
         .map_err(|e| ParamError(format!("--lat/--lon/--elevation: {e}")))?;
     let lamp = example_luminaire()?;

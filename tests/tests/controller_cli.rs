@@ -166,3 +166,25 @@ fn bad_input_names_the_parameter() {
         assert!(e.contains("stdin line 2") && e.contains(needle), "{e}");
     }
 }
+
+/// The library entry point checks the step itself (the CLI's parser is not the only caller): a
+/// zero step is an error naming `--step`, not an endless loop.
+#[test]
+fn schedule_refuses_a_zero_step() {
+    let config = sky_train::controller::ScheduleConfig {
+        latitude: 48.2,
+        longitude: 16.4,
+        elevation: 0.0,
+        date: (2026, 3, 20),
+        step_minutes: 0,
+        turbidity: 3.0,
+        full_scale_lux: 10_000.0,
+    };
+    let err = sky_train::controller::schedule(&config, &mut Vec::new())
+        .expect_err("a zero step must be refused");
+    let text = format!("{err:#}");
+    assert!(
+        text.contains("--step 0") && text.contains("[1, 1440]"),
+        "{text}"
+    );
+}
