@@ -86,15 +86,13 @@ fn cct_and_duv_agree_with_colour_science() {
     assert!(below <= 2.0 && above <= 1e-3 && duv <= 1e-4);
 }
 
-/// Brute-force ∫ Y (n · ω)⁺ dω over the upper hemisphere by the midpoint rule on a 0.1° grid in
-/// f64, for every normal at once.
-fn brute_force(luminance: &dyn Fn([f64; 3]) -> f64, normals: &[[f64; 3]]) -> Vec<f64> {
+/// Calls `f(direction, solid angle)` for every cell of the upper hemisphere on a 0.1° grid
+/// (midpoints; each row's solid angle exact), in f64.
+fn for_each_hemisphere_cell(mut f: impl FnMut([f64; 3], f64)) {
     let (rows, cols) = (900usize, 3600usize);
     let (dt, dp) = (FRAC_PI_2 / rows as f64, 2.0 * PI / cols as f64);
-    let mut sums = vec![0.0; normals.len()];
     for j in 0..rows {
         let theta = (j as f64 + 0.5) * dt;
-        // Exact solid angle of the cell row.
         let omega = dp * ((theta - 0.5 * dt).cos() - (theta + 0.5 * dt).cos());
         for i in 0..cols {
             let phi = (i as f64 + 0.5) * dp;
@@ -103,15 +101,24 @@ fn brute_force(luminance: &dyn Fn([f64; 3]) -> f64, normals: &[[f64; 3]]) -> Vec
                 theta.sin() * phi.sin(),
                 theta.cos(),
             ];
-            let l = luminance(d);
-            for (s, n) in sums.iter_mut().zip(normals) {
-                let c = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
-                if c > 0.0 {
-                    *s += l * c * omega;
-                }
-            }
+            f(d, omega);
         }
     }
+}
+
+/// Brute-force ∫ Y (n · ω)⁺ dω over the upper hemisphere by the midpoint rule on a 0.1° grid in
+/// f64, for every normal at once.
+fn brute_force(luminance: &dyn Fn([f64; 3]) -> f64, normals: &[[f64; 3]]) -> Vec<f64> {
+    let mut sums = vec![0.0; normals.len()];
+    for_each_hemisphere_cell(|d, omega| {
+        let l = luminance(d);
+        for (s, n) in sums.iter_mut().zip(normals) {
+            let c = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+            if c > 0.0 {
+                *s += l * c * omega;
+            }
+        }
+    });
     sums
 }
 
@@ -176,28 +183,16 @@ fn cone_mean_agrees_with_brute_force() {
         (5.0, 20.0, [0.0, 1.0, 0.0], 45.0), // a window: half of its cone is ground
     ] {
         let reference = reference::Sky::new(turbidity, f64::to_radians(zenith_deg), 0.0);
-        let (rows, cols) = (900usize, 3600usize);
-        let (dt, dp) = (FRAC_PI_2 / rows as f64, 2.0 * PI / cols as f64);
         let cos_half = f64::to_radians(half_deg).cos();
         let mut sum = [0.0f64; 3];
-        for j in 0..rows {
-            let theta = (j as f64 + 0.5) * dt;
-            let omega = dp * ((theta - 0.5 * dt).cos() - (theta + 0.5 * dt).cos());
-            for i in 0..cols {
-                let phi = (i as f64 + 0.5) * dp;
-                let d = [
-                    theta.sin() * phi.cos(),
-                    theta.sin() * phi.sin(),
-                    theta.cos(),
-                ];
-                if d[0] * axis[0] + d[1] * axis[1] + d[2] * axis[2] >= cos_half {
-                    let xyz = reference::xyy_to_xyz(reference.xyy(d));
-                    for k in 0..3 {
-                        sum[k] += xyz[k] * omega;
-                    }
+        for_each_hemisphere_cell(|d, omega| {
+            if d[0] * axis[0] + d[1] * axis[1] + d[2] * axis[2] >= cos_half {
+                let xyz = reference::xyy_to_xyz(reference.xyy(d));
+                for k in 0..3 {
+                    sum[k] += xyz[k] * omega;
                 }
             }
-        }
+        });
         let total = sum[0] + sum[1] + sum[2];
         let (want_x, want_y) = (sum[0] / total, sum[1] / total);
         let want_lum = sum[1] / (2.0 * PI * (1.0 - cos_half));
