@@ -306,13 +306,12 @@ impl PreethamSky {
         let inv_len = math::rsqrt(dir.length_squared());
         let dir = dir * inv_len;
         let s = self.sun.direction();
-        // max/min also map NaN to the bound.
-        #[allow(clippy::manual_clamp)] // clamp would pass NaN through
-        let cos_gamma = dir.dot(s).max(-1.0).min(1.0);
+        // NaN goes to −1.
+        let cos_gamma = math::at_most(math::at_least(dir.dot(s), -1.0), 1.0);
         let cross2 = dir.cross(s).length_squared();
         let sin_gamma = cross2 * math::rsqrt(cross2);
         let gamma = math::atan2(sin_gamma, cos_gamma);
-        let inv_cos_theta = 1.0 / dir.z.max(MIN_COS_THETA);
+        let inv_cos_theta = 1.0 / math::at_least(dir.z, MIN_COS_THETA);
         let cos2_gamma = cos_gamma * cos_gamma;
         let f = |c: usize| {
             self.scale[c] * self.perez_log2[c].evaluate_log2(inv_cos_theta, gamma, cos2_gamma)

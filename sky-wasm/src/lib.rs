@@ -478,14 +478,19 @@ impl Renderer {
     }
 }
 
-/// Writes the 8-bit sRGB RGBA of `rgb` × `exposure` at `pixels` in `out`.
+/// Writes the 8-bit sRGB RGBA of `rgb` × `exposure` at `pixels` in `out` (at most [`CHUNK`]
+/// pixels): the table keys of all channels first, in a loop that vectorises, then the lookups.
 #[inline(always)]
 fn write_srgb(table: &Srgb8, out: &mut [u8], pixels: &[u32], rgb: &[Vec3], exposure: f32) {
-    for (c, &pixel) in rgb.iter().zip(pixels) {
+    let mut keys = [[0u32; 3]; CHUNK];
+    for (k, c) in keys.iter_mut().zip(rgb) {
         let c = *c * exposure;
+        *k = [Srgb8::key(c.x), Srgb8::key(c.y), Srgb8::key(c.z)];
+    }
+    for (k, &pixel) in keys.iter().zip(pixels) {
         let at = pixel as usize * 4;
         if let Some(px) = out.get_mut(at..at + 4) {
-            px.copy_from_slice(&[table.encode(c.x), table.encode(c.y), table.encode(c.z), 255]);
+            px.copy_from_slice(&[table.code(k[0]), table.code(k[1]), table.code(k[2]), 255]);
         }
     }
 }

@@ -42,13 +42,28 @@ impl Srgb8 {
     /// The 8-bit sRGB code of the linear value `c` (clamped to [0, 1]; NaN gives 0).
     #[inline(always)]
     #[must_use]
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)] // in [0.5, 4095.5]
     pub fn encode(&self, c: f32) -> u8 {
-        // max/min also map NaN to 0.
-        #[allow(clippy::manual_clamp)]
-        let c = c.max(0.0).min(1.0);
-        let k = (c.sqrt() * (ENTRIES - 1) as f32 + 0.5) as usize;
-        self.codes[k.min(ENTRIES - 1)]
+        self.code(Self::key(c))
+    }
+
+    /// The table index of the linear value `c`: arithmetic only, so that a loop of keys
+    /// vectorises; [`code`](Self::code) then looks it up (a frame computes its keys first).
+    #[inline(always)]
+    #[must_use]
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)] // in [0.5, 4095.5]
+    pub fn key(c: f32) -> u32 {
+        // Compares and blends (NaN goes to 0): f32::max/min would also have to pick the non-NaN
+        // operand, which costs several instructions per channel in WebAssembly.
+        let c = if c > 0.0 { c } else { 0.0 };
+        let c = if c < 1.0 { c } else { 1.0 };
+        (c.sqrt() * (ENTRIES - 1) as f32 + 0.5) as u32
+    }
+
+    /// The 8-bit code of a [`key`](Self::key) (keys beyond the table give 255).
+    #[inline(always)]
+    #[must_use]
+    pub fn code(&self, key: u32) -> u8 {
+        self.codes.get(key as usize).copied().unwrap_or(u8::MAX)
     }
 }
 
