@@ -31,7 +31,7 @@ pub mod srgb8;
 use sky_core::aoas::{AoasSky, DayCycle, Preset, Scattering, Style};
 use sky_core::neural::{NeuralWeights, pretrained};
 use sky_core::sh::ShSky;
-use sky_core::{NeuralSky, PreethamSky, Sun, Vec3, color, geom};
+use sky_core::{NeuralSky, PreethamSky, Sun, Vec3, color, geom, solar};
 use wasm_bindgen::prelude::*;
 
 use projection::{Kind, Projection};
@@ -66,14 +66,12 @@ enum Model {
 // Not inlined: each call site would hold its own copy of every model's kernels (the .wasm
 // has a 200 KB budget); a call per direction or per chunk of 256 costs nothing measurable.
 impl Model {
-    #[inline(never)]
+    /// One direction through [`rgb_batch`](Self::rgb_batch): every sky-core batch gives its
+    /// model's `rgb` bit for bit, and a second copy of the kernels would cost 8 KB of .wasm.
     fn rgb(&self, dir: Vec3) -> Vec3 {
-        match self {
-            Self::Preetham(s) => s.rgb(dir),
-            Self::Neural(s) => s.rgb(dir),
-            Self::Aoas(s) => s.rgb(dir),
-            Self::Sh(s) => s.radiance(dir),
-        }
+        let mut out = [Vec3::ZERO];
+        self.rgb_batch(&[dir], &mut out);
+        out[0]
     }
 
     #[inline(never)]
@@ -293,6 +291,76 @@ impl Sky {
 #[must_use]
 pub fn aoas_presets() -> Vec<String> {
     Preset::ALL.iter().map(|p| p.name().to_owned()).collect()
+}
+
+/// The sun's position at a UTC date and time seen from a place on the Earth: sky-core's
+/// [`solar`] (NREL's Solar Position Algorithm, within 0.01° of pvlib's).
+///
+/// ```js
+/// const p = SunPosition.at(2026, 6, 21, 11, 0, 0, 48.21, 16.37, 190); // Vienna, summer noon
+/// const sky = Sky.preetham(p.zenith, p.azimuth, 3);                  // radians, as the skies take
+/// console.log(p.elevationDeg, p.compassAzimuthDeg);                  // ≈ 65°, ≈ 180° (south)
+/// ```
+#[wasm_bindgen]
+#[derive(Debug, Clone, Copy)]
+pub struct SunPosition {
+    position: solar::SunPosition,
+}
+
+#[wasm_bindgen]
+impl SunPosition {
+    /// The sun at `year-month-day hour:minute:second` UTC (years 1-2999; `second` in [0, 60))
+    /// seen from `latitude` (degrees, −90 to 90, north positive), `longitude` (degrees, −180 to
+    /// 180, east positive) and `elevation` (metres above sea level, −500 to 10 000).
+    ///
+    /// # Errors
+    /// A field outside its range, named with the range in the message.
+    #[allow(clippy::too_many_arguments)] // the fields of a date, a time and a place
+    pub fn at(
+        year: i32,
+        month: u32,
+        day: u32,
+        hour: u32,
+        minute: u32,
+        second: f64,
+        latitude: f64,
+        longitude: f64,
+        elevation: f64,
+    ) -> Result<SunPosition, JsError> {
+        let time = solar::UtcTime::new(year, month, day, hour, minute, second).map_err(js_error)?;
+        let site = solar::Site::new(latitude, longitude, elevation).map_err(js_error)?;
+        let position = solar::SunPosition::new(&time, &site).map_err(js_error)?;
+        Ok(Self { position })
+    }
+
+    /// The geometric zenith angle in radians, [0, π] (what the [`Sky`] constructors take; the
+    /// sun is below the horizon above π/2).
+    #[wasm_bindgen(getter)]
+    #[must_use]
+    pub fn zenith(&self) -> f32 {
+        self.position.sun().zenith()
+    }
+
+    /// The azimuth in radians in sky-core's convention: from +x (east) towards +y (north).
+    #[wasm_bindgen(getter)]
+    #[must_use]
+    pub fn azimuth(&self) -> f32 {
+        self.position.sun().azimuth()
+    }
+
+    /// The geometric elevation above the horizon in degrees, 90 − zenith.
+    #[wasm_bindgen(getter, js_name = elevationDeg)]
+    #[must_use]
+    pub fn elevation_deg(&self) -> f64 {
+        self.position.elevation_deg()
+    }
+
+    /// The compass azimuth in degrees: from north, clockwise (east 90), in [0, 360).
+    #[wasm_bindgen(getter, js_name = compassAzimuthDeg)]
+    #[must_use]
+    pub fn compass_azimuth_deg(&self) -> f64 {
+        self.position.azimuth_deg()
+    }
 }
 
 /// An image of the sky (a fisheye dome or a panorama) of a fixed size; renders any [`Sky`].

@@ -1,6 +1,6 @@
 // The demo: every control redraws on `input`, so the image follows a slider while it is dragged.
 // Each view is one call into WebAssembly that fills a canvas's ImageData.
-import init, { Sky, Renderer, aoasPresets } from "./pkg/sky_wasm.js";
+import init, { Sky, Renderer, SunPosition, aoasPresets } from "./pkg/sky_wasm.js";
 
 await init();
 
@@ -32,16 +32,71 @@ for (const name of aoasPresets()) $("preset").add(new Option(name, name));
 
 const TURBIDITY_RANGE = { "neural-hosek": [1, 10], aoas: null, sh: SH_TURBIDITY };
 
+/** The sun from the date, time and place controls, by sky-core's SPA. */
+function sunFromTime() {
+  const [year, month, day] = $("date").value.split("-").map(Number);
+  const t = Number($("time").value);
+  const [lat, lon] = [Number($("latitude").value), Number($("longitude").value)];
+  if (!year) throw new Error("date: enter a date (years 1 to 2999)");
+  const at = SunPosition.at(year, month, day, Math.floor(t / 3600), Math.floor(t / 60) % 60, t % 60,
+    lat, lon, placeElevation);
+  try {
+    return { zenith: at.zenith, azimuth: at.azimuth, elevationDeg: at.elevationDeg,
+      compassDeg: at.compassAzimuthDeg };
+  } finally {
+    at.free();
+  }
+}
+
+/** Metres above sea level of the chosen place (0 for a place typed in). */
+let placeElevation = 190;
+
 function readControls() {
-  return {
+  const p = {
     model: $("model").value,
     view: $("view").value,
+    sunFrom: $("sun-from").value,
     sunZenith: Number($("sun-zenith").value) * DEG,
     sunAzimuth: Number($("sun-azimuth").value) * DEG,
     turbidity: Number($("turbidity").value),
     preset: $("preset").value,
     ev: Number($("exposure").value),
   };
+  if (p.sunFrom === "time") {
+    p.sun = sunFromTime();
+    [p.sunZenith, p.sunAzimuth] = [p.sun.zenith, p.sun.azimuth];
+  }
+  return p;
+}
+
+/** The date, time and place controls, and the sun they put in the sky. */
+function syncSunControls(p) {
+  const byTime = p.sunFrom === "time";
+  $("when-where").disabled = !byTime;
+  $("sun-zenith").disabled = byTime;
+  $("sun-azimuth").disabled = byTime;
+  const t = Number($("time").value);
+  const two = (n) => String(n).padStart(2, "0");
+  $("time-value").value = `${two(Math.floor(t / 3600))}:${two(Math.floor(t / 60) % 60)}:${two(t % 60)}`;
+  const readout = $("sun-readout");
+  if (!byTime) {
+    readout.textContent = "";
+    delete readout.dataset.elevationDeg;
+    delete readout.dataset.compassDeg;
+    return;
+  }
+  const { elevationDeg, compassDeg } = p.sun;
+  readout.dataset.elevationDeg = elevationDeg.toFixed(6);
+  readout.dataset.compassDeg = compassDeg.toFixed(6);
+  readout.textContent = `sun ${elevationDeg.toFixed(2)}° high, compass azimuth ` +
+    `${compassDeg.toFixed(2)}° (geometric, NREL SPA)`;
+  if (elevationDeg < 0) {
+    throw new Error(`the sun is ${(-elevationDeg).toFixed(2)}° below the horizon at this time ` +
+      "and place: the sky models need it above (try a later time)");
+  }
+  // The angle sliders follow, so that switching back keeps this sun.
+  $("sun-zenith").value = (p.sunZenith / DEG).toFixed(1);
+  $("sun-azimuth").value = (((p.sunAzimuth / DEG) % 360 + 360) % 360).toFixed(0);
 }
 
 function makeSky(model, p) {
@@ -127,9 +182,10 @@ function drawSphere(p) {
 }
 
 function draw() {
-  const p = readControls();
-  syncControls(p);
   try {
+    const p = readControls();
+    syncSunControls(p);
+    syncControls(p);
     const { ms, frame } = drawDome(p);
     drawView(panorama, frame, p.view);
     frame.skies.forEach((s) => s.free());
@@ -184,7 +240,20 @@ $("preset").addEventListener("input", () => {
   }
   requestDraw();
 });
-for (const id of ["model", "view", "sun-zenith", "sun-azimuth", "turbidity", "exposure"]) {
+$("place").addEventListener("input", () => {
+  if ($("place").value === "") return; // "other": the fields as they are
+  const [lat, lon, elevation] = $("place").value.split(",").map(Number);
+  [$("latitude").value, $("longitude").value, placeElevation] = [lat, lon, elevation];
+  requestDraw();
+});
+for (const id of ["latitude", "longitude"]) {
+  $(id).addEventListener("input", () => {
+    $("place").value = "";
+    placeElevation = 0;
+  });
+}
+for (const id of ["model", "view", "sun-zenith", "sun-azimuth", "turbidity", "exposure",
+  "sun-from", "latitude", "longitude", "date", "time"]) {
   $(id).addEventListener("input", requestDraw);
 }
 $("measure").addEventListener("click", measure);

@@ -144,6 +144,8 @@ test("each control changes the image", async () => {
     { turbidity: 5 }, { "sun-zenith": 60 }, { "sun-azimuth": 200 }, { exposure: 1.5 },
     { model: "neural-hosek" }, { view: "difference" }, { view: "split" },
     { model: "aoas", view: "single" }, { preset: "coral" }, { model: "sh" },
+    { model: "preetham", "sun-from": "time" }, { time: 50_000 },
+    { date: "2026-12-21", time: 43_200 }, { place: "-33.92,18.42,10" },
   ];
   for (const change of changes) {
     await set(change);
@@ -152,6 +154,50 @@ test("each control changes the image", async () => {
     assert.ok(differing > 1000, `${JSON.stringify(change)} changed ${differing} values`);
     before = now;
   }
+  await set({ "sun-from": "angles" });
+});
+
+test("date, time and place put the sun where pvlib's SPA does (within 0.01°)", async () => {
+  // tests/fixtures/spa.csv: pvlib's independent SPA at sites of both hemispheres, 1950-2100.
+  const csv = await readFile(path.join(root, "tests/fixtures/spa.csv"), "utf8");
+  const rows = csv.split("\n").filter((l) => l && !l.startsWith("#") && !l.startsWith("site"))
+    .map((l) => l.split(","))
+    .map(([site, utc, lat, lon, , zenith, , azimuth]) =>
+      ({ site, utc, lat, lon, zenith: Number(zenith), azimuth: Number(azimuth) }))
+    // The sun above the horizon (the skies need it there), not at the zenith (azimuth undefined).
+    .filter((r) => r.zenith > 1 && r.zenith < 89);
+  assert.ok(rows.length >= 10, `${rows.length} fixture rows`);
+  await set({ model: "preetham", view: "single", "sun-from": "time" });
+  for (const r of rows.slice(0, 10)) {
+    const [, date, h, m, sec] = r.utc.match(/^(\d{4}-\d\d-\d\d)T(\d\d):(\d\d):(\d\d)Z$/);
+    await set({ latitude: r.lat, longitude: r.lon, date, time: Number(h) * 3600 + Number(m) * 60 + Number(sec) });
+    const elevation = Number(await page.getAttribute("#sun-readout", "data-elevation-deg"));
+    const compass = Number(await page.getAttribute("#sun-readout", "data-compass-deg"));
+    const dAz = Math.abs(((compass - r.azimuth + 540) % 360) - 180);
+    assert.ok(Math.abs(elevation - (90 - r.zenith)) < 0.01 && dAz < 0.01,
+      `${r.site} ${r.utc}: elevation ${elevation} vs ${90 - r.zenith}, azimuth ${compass} vs ${r.azimuth}`);
+  }
+  // At night the page says so instead of drawing.
+  await page.evaluate(() => {
+    Object.assign(document.getElementById("latitude"), { value: "48.21" });
+    Object.assign(document.getElementById("longitude"), { value: "16.37" });
+    const t = document.getElementById("time");
+    t.value = "0"; // midnight UTC in Vienna
+    t.dispatchEvent(new Event("input", { bubbles: true }));
+    return new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));
+  });
+  assert.match(await page.textContent("#error"), /below the horizon/);
+  // A place off the globe: sky-core's message, naming the parameter and its range.
+  await page.evaluate(() => {
+    const lat = document.getElementById("latitude");
+    lat.value = "95";
+    lat.dispatchEvent(new Event("input", { bubbles: true }));
+    return new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));
+  });
+  assert.match(await page.textContent("#error"), /latitude.*95.*-90.*90/);
+  await page.evaluate(() => { document.getElementById("latitude").value = "48.21"; });
+  await set({ "sun-from": "angles", "sun-zenith": 40 });
+  assert.deepEqual(problems, []);
 });
 
 test("the sphere is drawn, brighter on the sun's side", async () => {
@@ -167,11 +213,14 @@ test("the sphere is drawn, brighter on the sun's side", async () => {
 });
 
 test("screenshot kept as an artifact", async () => {
-  await set({ model: "preetham", view: "single", "sun-zenith": 70, "sun-azimuth": 120, turbidity: 3, exposure: 0 });
+  // A summer evening in Vienna, the sun about 10° high in the north-west.
+  await set({ model: "preetham", view: "single", turbidity: 3, exposure: 0, place: "48.21,16.37,190",
+    date: "2026-06-21", time: 17 * 3600 + 15 * 60, "sun-from": "time" });
   await mkdir(artifacts, { recursive: true });
   const file = path.join(artifacts, "demo.png");
   await page.screenshot({ path: file, fullPage: true });
   console.log(`  screenshot: ${file}`);
+  await set({ "sun-from": "angles" });
   assert.deepEqual(problems, []);
 });
 
