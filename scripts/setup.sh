@@ -4,7 +4,8 @@
 #  - qemu-system-arm, unpacked into .tools/qemu (apt would replace the machine's backported qemu-utils);
 #  - for sky-wasm (scripts/wasm.sh): Debian's chromium (the browser tests' browser), node and npm,
 #    wasm-bindgen-cli at the exact version of the wasm-bindgen crate in Cargo.lock (in
-#    .tools/wasm-bindgen), and the npm packages of sky-wasm/package-lock.json (`npm ci`).
+#    .tools/wasm-bindgen: wasm-bindgen, and wasm-bindgen-test-runner for the wasm-bindgen tests),
+#    and the npm packages of sky-wasm/package-lock.json (`npm ci`).
 # Safe to run again: every step checks first.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -45,7 +46,9 @@ fi
 # wasm-bindgen-cli must match the wasm-bindgen crate exactly (its output embeds the schema version).
 bindgen_version=$(awk '/^name = "wasm-bindgen"$/ { getline; gsub(/"/, "", $3); print $3 }' "$root/Cargo.lock")
 bindgen="$tools/wasm-bindgen/bin/wasm-bindgen"
-if [ "$("$bindgen" --version 2>/dev/null)" != "wasm-bindgen $bindgen_version" ]; then
+test_runner="$tools/wasm-bindgen/bin/wasm-bindgen-test-runner"
+if [ "$("$bindgen" --version 2>/dev/null)" != "wasm-bindgen $bindgen_version" ] ||
+  [ "$("$test_runner" --version 2>/dev/null)" != "wasm-bindgen-test-runner $bindgen_version" ]; then
   echo "setup: cargo install wasm-bindgen-cli $bindgen_version into .tools/wasm-bindgen (a few minutes)"
   # Not --locked: the CLI's own lock file pins a webpki-roots release the registry here lacks.
   cargo install -q wasm-bindgen-cli --version "=$bindgen_version" --root "$tools/wasm-bindgen" --force
@@ -62,5 +65,6 @@ fi
 
 "$tools/qemu/usr/bin/qemu-system-arm" --version | head -n 1
 "$bindgen" --version
+"$test_runner" --version
 /usr/bin/chromium --version 2>/dev/null | head -n 1
 /usr/bin/rustc --version

@@ -6,8 +6,9 @@
 #   cross: sky-core for thumbv7em / riscv32imac / wasm32 without std or alloc, and the firmware
 #          examples under qemu (Cortex-M4F; fixed point on Cortex-M3 and M0) checked against
 #          host-computed values
-#   wasm:  sky-wasm built for wasm32, its node tests (parity with native sky-core) and the demo's
-#          browser tests in Debian's chromium (scripts/wasm.sh test)
+#   wasm:  sky-wasm built for wasm32, its wasm-bindgen tests in node (parity with native sky-core,
+#          errors, images), node tests of its JavaScript surface and the demo's browser tests in
+#          Debian's chromium (scripts/wasm.sh test)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
@@ -38,7 +39,7 @@ cargo run --release --locked -q -p sky-train -- fuzz-weights --seconds 20
 step "cross targets and firmware under qemu"
 scripts/cross.sh
 
-step "sky-wasm: wasm build, node tests, browser tests of the demo"
+step "sky-wasm: wasm build, wasm-bindgen tests and node tests, browser tests of the demo"
 scripts/wasm.sh test
 
 printf '\nall checks passed in %d s\n' "$(( $(date +%s) - start ))"

@@ -5,39 +5,55 @@
 #                                 (web + TypeScript types; node bindings for the tests) and write
 #                                 the demo site to DIR (default target/wasm/site)
 #   scripts/wasm.sh serve [PORT]  serve the built site on http://127.0.0.1:PORT/ (default 8000)
-#   scripts/wasm.sh test          build, then the node tests (parity with native sky-core for
-#                                 every model, the API's errors) and the browser tests (the demo
-#                                 in Debian's chromium through playwright-core; prints the frame
-#                                 times the demo measures; screenshot in target/wasm/artifacts)
+#   scripts/wasm.sh test          build, then three suites:
+#                                 - wasm-bindgen tests (sky-wasm/tests/wasm.rs), compiled for
+#                                   wasm32 like the shipped .wasm and run in node by
+#                                   wasm-bindgen-test-runner: every model's values equal the
+#                                   native build of sky-core's (native_values example) to 1e-6
+#                                   relative, sky-core's errors reach JsError with its message,
+#                                   wrong-length outputs fail, the images are not blank;
+#                                 - node tests (tests/node/) of the shipped module's JavaScript
+#                                   surface: exported names, thrown Errors, typed arrays;
+#                                 - browser tests (the demo in Debian's chromium through
+#                                   playwright-core; prints the frame times the demo measures;
+#                                   screenshot in target/wasm/artifacts)
 #   scripts/wasm.sh bench         build the shipped .wasm (opt-level 3, simd128) and two peers
 #                                 (no simd128; opt-level "s") and print their sizes and frame
 #                                 times measured in one node run (not part of the test command)
 #
 # The wasm32 toolchain is Debian's rustc-web with -Zbuild-std (shared/DESIGN.md, "Toolchains"),
 # configured in scripts/wasm/config.toml; its output goes to target/wasm, apart from the host build.
+# The wasm-bindgen tests share that target dir, profile and flags, so they reuse the built std
+# and dependencies.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out="$root/target/wasm"
 site_default="$out/site"
 bindgen="$root/.tools/wasm-bindgen/bin/wasm-bindgen"
+test_runner="$root/.tools/wasm-bindgen/bin/wasm-bindgen-test-runner"
 step() { printf '\n==> %s\n' "$*"; }
 
-# compile_wasm TARGET_DIR [CARGO_ARGS...]: sky-wasm for wasm32, profile wasm-release.
-compile_wasm() {
-  local dir=$1
-  shift
-  # Cargo honours [unstable] build-std only when it sees this in its own environment.
-  export RUSTC_BOOTSTRAP=1
+# wasm_cargo COMMAND TARGET_DIR [CARGO_ARGS...]: cargo COMMAND on sky-wasm for wasm32, profile
+# wasm-release.
+wasm_cargo() {
+  local command=$1 dir=$2
+  shift 2
   local lld
   lld="$(rustc --print sysroot)/lib/rustlib/x86_64-unknown-linux-gnu/bin/rust-lld"
-  (cd "$root" && cargo build -p sky-wasm --lib --locked --target wasm32-unknown-unknown \
-    --profile wasm-release --target-dir "$dir" --config "$root/scripts/wasm/config.toml" \
+  # Cargo honours [unstable] build-std only when it sees RUSTC_BOOTSTRAP in its own environment;
+  # set for this cargo alone, since host builds with it would not reuse the test command's.
+  (cd "$root" && RUSTC_BOOTSTRAP=1 cargo "$command" -p sky-wasm --locked \
+    --target wasm32-unknown-unknown --profile wasm-release --target-dir "$dir" \
+    --config "$root/scripts/wasm/config.toml" \
     --config "target.wasm32-unknown-unknown.linker='$lld'" "${immediate_abort[@]}" "$@")
 }
 # A panic (sky-core has none; a bug would be one) traps at once, without the formatting code and
 # location strings that panic = "abort" keeps: 10 KB of .wasm. The profile cannot say so on the
-# stable host toolchain (Cargo refuses the manifest), so the flag goes to rustc here.
+# stable host toolchain (Cargo refuses the manifest), so the flag goes to rustc here, for the
+# tests too (the same flags let them reuse the built std and dependencies; a failing assertion
+# then traps without its message, and the runner names the test).
 immediate_abort=(--config "target.wasm32-unknown-unknown.rustflags=['-Zunstable-options','-Cpanic=immediate-abort']")
+compile_wasm() { wasm_cargo build "$1" --lib "${@:2}"; }
 simd128=(--config "target.wasm32-unknown-unknown.rustflags=['-C','target-feature=+simd128']")
 
 build() {
@@ -89,12 +105,21 @@ serve() {
 
 run_tests() {
   build
-  step "native sky-core values for the parity tests"
-  (cd "$root" && cargo run -q --locked -p sky-wasm --example native_values) >"$out/native_values.json"
+  step "native sky-core values for the parity tests (host build)"
+  local native="$out/native_values.json"
+  (cd "$root" && cargo run -q --locked -p sky-wasm --example native_values) >"$native.tmp"
+  # Replaced only when changed: the tests embed the file, and a new one rebuilds them.
+  if cmp -s "$native.tmp" "$native"; then rm "$native.tmp"; else mv "$native.tmp" "$native"; fi
 
-  step "node: the wasm-bindgen build against native sky-core, and its API"
-  (cd "$root/sky-wasm" && SKY_WASM_NODE_PKG="$out/node/sky_wasm.js" \
-    SKY_NATIVE_VALUES="$out/native_values.json" node --test tests/node/)
+  step "wasm-bindgen tests in node: every model against native sky-core, errors, images"
+  # Same profile, flags and target dir as the build above, whose std and dependencies it reuses
+  # (scripts/wasm/config.toml); --nocapture prints each sky's worst relative difference.
+  SKY_NATIVE_VALUES="$native" wasm_cargo test "$out" --test wasm "${simd128[@]}" \
+    --config "target.wasm32-unknown-unknown.runner='$test_runner'" -- --nocapture
+
+  step "node: the shipped module's JavaScript surface, and its values against native sky-core"
+  (cd "$root/sky-wasm" && SKY_WASM_NODE_PKG="$out/node/sky_wasm.js" SKY_NATIVE_VALUES="$native" \
+    node --test tests/node/)
 
   step "browser: the demo in Debian's chromium (playwright-core)"
   (cd "$root/sky-wasm" && SKY_WASM_SITE="$site_default" SKY_WASM_ARTIFACTS="$out/artifacts" \

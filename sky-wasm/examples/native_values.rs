@@ -1,7 +1,9 @@
 //! Prints, as JSON on stdout, the values the native (host) build of sky-core gives for a set of
 //! skies of every model and a set of view directions, and for a 16 × 16 fisheye image of each.
-//! The node tests (`sky-wasm/tests/node/`) evaluate the same skies through the WebAssembly
-//! build and compare: `cargo run -p sky-wasm --example native_values > native_values.json`.
+//! The wasm-bindgen tests (`sky-wasm/tests/wasm.rs`, run in node) build the same skies through
+//! sky-wasm's API compiled for wasm32 and compare: `scripts/wasm.sh test` runs
+//! `cargo run -p sky-wasm --example native_values > native_values.json` and hands the file to
+//! their build.
 //!
 //! Everything here calls sky-core directly (not sky-wasm's bindings), so the comparison checks
 //! the bindings as well as the wasm32 code generation.
@@ -14,32 +16,33 @@ use sky_core::sh::ShSky;
 use sky_core::{NeuralSky, PreethamSky, SkyError, Sun, Vec3, geom};
 use sky_wasm::projection::{Kind, Projection};
 
-/// The skies compared: how JavaScript builds each one, and the native sky.
+/// The skies compared: which of `sky_wasm::Sky`'s constructors builds each one and its
+/// arguments (JSON), and the native sky.
 type Case = (String, Box<dyn Fn(&[Vec3], &mut [Vec3])>);
 
 fn preetham(z: f32, a: f32, t: f32) -> Result<Case, SkyError> {
     let sky = PreethamSky::new(Sun::new(z, a)?, t)?;
-    let js = format!(r#"{{"kind":"preetham","args":[{z},{a},{t}]}}"#);
-    Ok((js, Box::new(move |d, o| sky.rgb_batch(d, o))))
+    let spec = format!(r#"{{"kind":"preetham","args":[{z},{a},{t}]}}"#);
+    Ok((spec, Box::new(move |d, o| sky.rgb_batch(d, o))))
 }
 
 fn neural(name: &str, w: &NeuralWeights, z: f32, a: f32, t: f32) -> Result<Case, SkyError> {
     let sky = NeuralSky::new(w, Sun::new(z, a)?, t)?;
-    let js = format!(r#"{{"kind":"neural","args":["{name}",{z},{a},{t}]}}"#);
-    Ok((js, Box::new(move |d, o| sky.rgb_batch(d, o))))
+    let spec = format!(r#"{{"kind":"neural","args":["{name}",{z},{a},{t}]}}"#);
+    Ok((spec, Box::new(move |d, o| sky.rgb_batch(d, o))))
 }
 
 fn neural_file(path: &str, z: f32, a: f32, t: f32) -> anyhow::Result<Case> {
     let bytes = std::fs::read(path).map_err(|e| anyhow::anyhow!("{path}: {e}"))?;
     let w = NeuralWeights::<12>::decode(&bytes).map_err(|e| anyhow::anyhow!("{path}: {e}"))?;
     let sky = NeuralSky::new(&w, Sun::new(z, a)?, t)?;
-    let js = format!(r#"{{"kind":"neuralFromBytes","file":"{path}","args":[{z},{a},{t}]}}"#);
-    Ok((js, Box::new(move |d, o| sky.rgb_batch(d, o))))
+    let spec = format!(r#"{{"kind":"neuralFromBytes","args":["{path}",{z},{a},{t}]}}"#);
+    Ok((spec, Box::new(move |d, o| sky.rgb_batch(d, o))))
 }
 
 fn aoas(preset: Preset, sun: Option<(f32, f32)>) -> Result<Case, SkyError> {
     let mut style = preset.style();
-    let js = match sun {
+    let spec = match sun {
         Some((z, a)) => {
             style.day_cycle = DayCycle::Sun(Sun::new(z, a)?);
             format!(
@@ -50,14 +53,14 @@ fn aoas(preset: Preset, sun: Option<(f32, f32)>) -> Result<Case, SkyError> {
         None => format!(r#"{{"kind":"aoas","args":["{}"]}}"#, preset.name()),
     };
     let sky = AoasSky::new(&Scattering::default(), &style)?;
-    Ok((js, Box::new(move |d, o| sky.rgb_batch(d, o))))
+    Ok((spec, Box::new(move |d, o| sky.rgb_batch(d, o))))
 }
 
 fn sh(z: f32, a: f32, t: f32, bands: u32) -> Result<Case, SkyError> {
     let sky = ShSky::new(Sun::new(z, a)?, t, bands as usize)?;
-    let js = format!(r#"{{"kind":"sh","args":[{z},{a},{t},{bands}]}}"#);
+    let spec = format!(r#"{{"kind":"sh","args":[{z},{a},{t},{bands}]}}"#);
     Ok((
-        js,
+        spec,
         Box::new(move |d, o| {
             for (o, d) in o.iter_mut().zip(d) {
                 *o = sky.radiance(*d);
@@ -115,11 +118,11 @@ fn main() -> anyhow::Result<()> {
         let _ = write!(json, "{sep}[{z},{a}]");
     }
     json.push_str("],\"fisheye\":{\"width\":16,\"height\":16},\"skies\":[");
-    for (i, (js, eval)) in cases.iter().enumerate() {
+    for (i, (spec, eval)) in cases.iter().enumerate() {
         if i > 0 {
             json.push(',');
         }
-        let _ = write!(json, "{{\"sky\":{js},\"rgb\":");
+        let _ = write!(json, "{{\"sky\":{spec},\"rgb\":");
         let mut rgb = vec![Vec3::ZERO; dirs.len()];
         eval(&dirs, &mut rgb);
         floats(&mut json, rgb.iter().flat_map(|c| c.to_array()));

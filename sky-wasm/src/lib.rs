@@ -22,8 +22,8 @@
 //!
 //! Units and axes are sky-core's: radians, +z up, azimuth from +x (east) towards +y (north);
 //! linear RGB in cd/m² for the Preetham and neural skies, O'Neil's relative units for AOAS.
-//! The values are sky-core's, bit for bit: the same code compiled for wasm32 (the node tests
-//! check every model against the native build to 1e-6 relative).
+//! The values are sky-core's, bit for bit: the same code compiled for wasm32 (the wasm-bindgen
+//! tests in `tests/wasm.rs` check every model against the native build to 1e-6 relative).
 
 pub mod projection;
 pub mod srgb8;
