@@ -6,6 +6,8 @@
 
 mod common;
 
+use common::utc;
+
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
@@ -45,21 +47,6 @@ struct ManifestFrame {
 fn manifest(dir: &Path) -> Manifest {
     toml::from_str(&std::fs::read_to_string(dir.join("captures.toml")).expect("manifest"))
         .expect("manifest parses")
-}
-
-/// `YYYY-MM-DDTHH:MM:SSZ` to sky-core's UTC time.
-fn utc(s: &str) -> sky_core::solar::UtcTime {
-    let n = |r: std::ops::Range<usize>| s[r].parse::<u32>().expect("digits");
-    let year = i32::try_from(n(0..4)).expect("year");
-    sky_core::solar::UtcTime::new(
-        year,
-        n(5..7),
-        n(8..10),
-        n(11..13),
-        n(14..16),
-        f64::from(n(17..19)),
-    )
-    .expect("valid time")
 }
 
 /// The exact sky of a frame: Hosek-Wilkie (hw-skymodel) for the sun at the frame's time.

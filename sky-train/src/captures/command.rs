@@ -195,13 +195,7 @@ pub fn execute(command: &CapturesCommand, output: &mut dyn Write) -> Result<()> 
         CapturesCommand::Interpolate(args) => {
             let started = Instant::now();
             let weights = export::read_weights::<12>(&args.weights)?;
-            let seq = load::load(
-                &args.input,
-                &LoadConfig {
-                    samples_per_frame: 64,
-                    ..LoadConfig::default()
-                },
-            )?;
+            let seq = load_for_suns(&args.input)?;
             let loaded = started.elapsed().as_secs_f64();
             let steps = interpolate::steps(&seq, args.step, args.interval)?;
             let width = args.width.map_or(seq.width, |w| w as usize);
@@ -247,13 +241,7 @@ pub fn execute(command: &CapturesCommand, output: &mut dyn Write) -> Result<()> 
         }
         CapturesCommand::Strip(args) => {
             let weights = export::read_weights::<12>(&args.weights)?;
-            let seq = load::load(
-                &args.input,
-                &LoadConfig {
-                    samples_per_frame: 64,
-                    ..LoadConfig::default()
-                },
-            )?;
+            let seq = load_for_suns(&args.input)?;
             let image = interpolate::strip(
                 &seq,
                 &weights,
@@ -266,6 +254,17 @@ pub fn execute(command: &CapturesCommand, output: &mut dyn Write) -> Result<()> 
             Ok(())
         }
     }
+}
+
+/// The captures of `dir` read for their suns only (few samples).
+fn load_for_suns(dir: &std::path::Path) -> Result<super::Sequence> {
+    load::load(
+        dir,
+        &LoadConfig {
+            samples_per_frame: 64,
+            ..LoadConfig::default()
+        },
+    )
 }
 
 fn train(args: &TrainArgs, output: &mut dyn Write) -> Result<()> {

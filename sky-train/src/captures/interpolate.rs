@@ -262,12 +262,27 @@ pub fn strip(
         height: 2 * th + gap,
         pixels: vec![Vec3::ZERO; (columns * (tw + gap) - gap) * (2 * th + gap)],
     };
+    // Empty cells (the gaps between captures) are dark grey.
+    for (col, row) in (0..columns).flat_map(|c| [(c, 0), (c, 1)]) {
+        for y in 0..th {
+            let start = (row * (th + gap) + y) * image.width + col * (tw + gap);
+            image.pixels[start..start + tw].fill(Vec3::splat(0.02));
+        }
+    }
     let source_width = seq.width.min(4 * tw);
+    // Every thumbnail is turned by the same whole number of columns, so that the first
+    // capture's sun is in the middle.
+    #[allow(
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss,
+        clippy::cast_precision_loss
+    )]
+    let shift = (((frames[0].sun.azimuth - PI) / TAU).rem_euclid(1.0) * tw as f64).round() as usize;
     let mut blit = |col: usize, row: usize, thumb: &[Vec3]| {
         for y in 0..th {
             for x in 0..tw {
                 let (ix, iy) = (col * (tw + gap) + x, row * (th + gap) + y);
-                image.pixels[iy * image.width + ix] = thumb[y * tw + x];
+                image.pixels[iy * image.width + ix] = thumb[y * tw + (x + shift) % tw];
             }
         }
     };
@@ -304,7 +319,9 @@ pub fn strip(
         .1;
     let scale = 0.18 / median.max(f32::MIN_POSITIVE);
     for p in &mut image.pixels {
-        *p *= scale;
+        if *p != Vec3::splat(0.02) {
+            *p *= scale;
+        }
     }
     Ok(image)
 }

@@ -93,7 +93,7 @@ pub fn find(luminance: &[f32], grid: &Equirect) -> Result<SunEstimate, NoSun> {
         *sorted.select_nth_unstable_by(mid, f32::total_cmp).1
     };
     let contrast = f64::from(peak) / f64::from(median).max(f64::MIN_POSITIVE);
-    if !(contrast >= MIN_CONTRAST) {
+    if contrast.is_nan() || contrast < MIN_CONTRAST {
         return Err(NoSun::TooDim { contrast });
     }
     // Flood fill of the region at or above half the peak, 4-connected, wrapping in azimuth.

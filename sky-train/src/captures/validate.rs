@@ -35,7 +35,11 @@ pub fn config() -> TrainConfig {
     }
 }
 
-/// Early stopping on some frames of a sequence (every third pixel of their evaluation grids).
+/// Every this-many-th pixel of a frame's evaluation grid is used for early stopping.
+const VALIDATION_STRIDE: usize = 5;
+
+/// Early stopping on some frames of a sequence (every [`VALIDATION_STRIDE`]-th pixel of their
+/// evaluation grids).
 struct Frames<'a> {
     frames: Vec<&'a Frame>,
 }
@@ -46,7 +50,7 @@ impl Validation for Frames<'_> {
             .frames
             .iter()
             .map(|f| {
-                let keep: Vec<usize> = (0..f.eval.dirs.len()).step_by(3).collect();
+                let keep: Vec<usize> = (0..f.eval.dirs.len()).step_by(VALIDATION_STRIDE).collect();
                 let dirs: Vec<Vec3> = keep.iter().map(|&i| f.eval.dirs[i]).collect();
                 let reference: Vec<Vec3> = keep.iter().map(|&i| f.eval.values[i]).collect();
                 let valid: Vec<bool> = keep.iter().map(|&i| f.eval.valid[i]).collect();
