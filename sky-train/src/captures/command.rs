@@ -53,7 +53,7 @@ pub struct TrainArgs {
     #[arg(long, default_value_t = 60.0, value_parser = budget_seconds)]
     pub max_seconds: f64,
     /// Iteration budget per training (1 to 100000).
-    #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    #[arg(long, default_value_t = 150, value_parser = clap::value_parser!(u32).range(1..=100_000))]
     pub max_iterations: u32,
 }
 

@@ -26,7 +26,7 @@ pub const PAPER_EGYPT_NRMSE: f64 = 0.0038;
 #[must_use]
 pub fn config() -> TrainConfig {
     TrainConfig {
-        max_iterations: 200,
+        max_iterations: 150,
         max_seconds: 60.0,
         patience: 20,
         milestone: PAPER_KIDER_NRMSE,
