@@ -31,6 +31,8 @@ pub fn config() -> TrainConfig {
         patience: 20,
         milestone: PAPER_KIDER_NRMSE,
         irradiance_weight: 0.0,
+        // The rest as for the other sky without a turbidity input (AOAS); its `sampling` is
+        // not used: captured views come from the frames.
         ..TrainConfig::new(crate::sources::ModelKind::Aoas)
     }
 }
