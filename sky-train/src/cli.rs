@@ -72,6 +72,13 @@ pub enum Command {
     /// white 900 lm at 0.4369,0.4041) reproducing that colour, at full output at
     /// --full-scale-lux.
     Schedule(ScheduleArgs),
+    /// Captured skies (seed 000 §III-D, §IV-A, §IV-B): train a neural sky on a sequence of
+    /// HDR environment maps, fill the gaps between them, synthesize test sequences.
+    Captures {
+        /// What to do with captures.
+        #[command(subcommand)]
+        command: crate::captures::command::CapturesCommand,
+    },
     /// Read CIE 1931 `x,y` lines on stdin (a header line is allowed) and write
     /// `x,y,cct_k,duv`: correlated colour temperature (1000-100000 K) and Duv (positive above
     /// the Planckian locus, ANSI C78.377).
@@ -606,6 +613,7 @@ pub fn execute(command: Command, input: &mut dyn BufRead, output: &mut dyn Write
             Ok(())
         }
         Command::FitSh(args) => fit_sh(&args, output),
+        Command::Captures { command } => crate::captures::command::execute(&command, output),
     }
 }
 
@@ -775,7 +783,7 @@ fn train_command(args: &TrainArgs, output: &mut dyn Write) -> Result<()> {
     let started = std::time::Instant::now();
     let set = train::dataset::DataSet::training(args.model, &config.sampling)?;
     let validation = train::validation_set(args.model)?;
-    let trained = train::train(&config, &set, &validation)?;
+    let trained = train::train(&config, &set, validation.as_slice())?;
     let wall = started.elapsed().as_secs_f64();
     writeln!(
         output,
@@ -866,7 +874,7 @@ fn showcase(args: &ShowcaseArgs, output: &mut dyn Write) -> Result<()> {
     )?;
     let set = train::dataset::DataSet::training(model, &config.sampling)?;
     let validation = train::validation_set(model)?;
-    let trained = train::train(&config, &set, &validation)?;
+    let trained = train::train(&config, &set, validation.as_slice())?;
     writeln!(
         output,
         "{} iterations in {:.1} s; validation NRMSE {:.5}; reached the paper's {} in {}",

@@ -10,15 +10,55 @@ use crate::image_io::write_atomically;
 use crate::sources::ModelKind;
 use crate::train::Trained;
 
+/// What a weight file says about the data its network learned (the header fields besides the
+/// weights, see `sky_core::neural::NeuralWeights`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TrainedOn {
+    /// The source's name (at most 32 bytes are kept), e.g. `hosek` or `captures`.
+    pub source: String,
+    /// Whether input 0 is √turbidity (false: it is zeroed, seed 000 §III-B).
+    pub uses_turbidity: bool,
+    /// The turbidities trained on.
+    pub turbidity_range: (f64, f64),
+    /// The sun zenith angles trained on, radians.
+    pub sun_zenith_range: (f64, f64),
+}
+
+impl TrainedOn {
+    /// A model's skies: its turbidity range, sun zenith 0 to π/2.
+    #[must_use]
+    pub fn model(model: ModelKind) -> Self {
+        Self {
+            source: model.to_string(),
+            uses_turbidity: model.uses_turbidity(),
+            turbidity_range: model.turbidity_range(),
+            sun_zenith_range: (0.0, std::f64::consts::FRAC_PI_2),
+        }
+    }
+}
+
 /// The f32 weights sky-core evaluates, from a trained single-hidden-layer network of `H`
-/// neurons.
+/// neurons trained on `model`'s skies.
+///
+/// # Errors
+/// When the network is not 6-H-3.
+pub fn to_weights<const H: usize>(
+    trained: &Trained,
+    model: ModelKind,
+    seed: u32,
+) -> Result<NeuralWeights<H>> {
+    to_weights_of(trained, &TrainedOn::model(model), seed)
+}
+
+/// The f32 weights sky-core evaluates, from a trained single-hidden-layer network of `H`
+/// neurons, with the header of `trained_on`.
 ///
 /// # Errors
 /// When the network is not 6-H-3.
 #[allow(clippy::cast_possible_truncation)]
-pub fn to_weights<const H: usize>(
+pub fn to_weights_of<const H: usize>(
     trained: &Trained,
-    model: ModelKind,
+    trained_on: &TrainedOn,
     seed: u32,
 ) -> Result<NeuralWeights<H>> {
     if trained.net.sizes != [6, H, 3] {
@@ -31,10 +71,12 @@ pub fn to_weights<const H: usize>(
     let base = 7 * H;
     let output = std::array::from_fn(|c| std::array::from_fn(|j| f(p[base + c * H + j])));
     let output_bias = std::array::from_fn(|c| f(p[base + 3 * H + c]));
-    let (tmin, tmax) = model.turbidity_range();
+    let (tmin, tmax) = trained_on.turbidity_range;
+    let (zmin, zmax) = trained_on.sun_zenith_range;
     let mut source = [0u8; 32];
-    let name = model.to_string();
-    source[..name.len().min(32)].copy_from_slice(&name.as_bytes()[..name.len().min(32)]);
+    let name = trained_on.source.as_bytes();
+    let n = name.len().min(32);
+    source[..n].copy_from_slice(&name[..n]);
     let s = &trained.scaling;
     Ok(NeuralWeights {
         hidden,
@@ -44,9 +86,9 @@ pub fn to_weights<const H: usize>(
         input_offset: s.input_offset.map(f),
         input_scale: s.input_scale.map(f),
         output_scale: [f(s.output_scale); 3],
-        uses_turbidity: model.uses_turbidity(),
+        uses_turbidity: trained_on.uses_turbidity,
         turbidity_range: (f(tmin), f(tmax)),
-        sun_zenith_range: (0.0, core::f32::consts::FRAC_PI_2),
+        sun_zenith_range: (f(zmin), f(zmax)),
         source,
         seed,
         nrmse: f(trained.validation_nrmse),

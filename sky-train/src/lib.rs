@@ -3,6 +3,7 @@
 //! ([`reference`](mod@reference)). The `sky-train` binary is a thin command-line front over this library.
 
 pub mod bench;
+pub mod captures;
 pub mod cli;
 pub mod controller;
 pub mod dispatch;

@@ -9,26 +9,14 @@ use sky_core::color::Xyy;
 use sky_core::led::{Channel, Luminaire};
 use sky_core::neural::{NeuralSky, pretrained};
 use sky_core::photometry::Photometry;
-use sky_core::solar::{Site, SunPosition, UtcTime};
+use sky_core::solar::{Site, SunPosition};
 use sky_core::twilight::Daylight;
 use sky_core::{PreethamSky, Sun, Vec3, cct};
 use sky_tests::fixtures::{self, num};
 use sky_tests::reference::preetham as reference;
 
-/// `YYYY-MM-DDTHH:MM:SSZ`.
-fn utc(s: &str) -> UtcTime {
-    let n = |r: std::ops::Range<usize>| s[r].parse::<u32>().expect("digits");
-    let year = i32::try_from(n(0..4)).expect("year");
-    UtcTime::new(
-        year,
-        n(5..7),
-        n(8..10),
-        n(11..13),
-        n(14..16),
-        f64::from(n(17..19)),
-    )
-    .expect("valid time")
-}
+mod common;
+use common::utc;
 
 /// Sun position within 0.01° of pvlib's SPA (geometric zenith, refracted zenith, azimuth) over
 /// 420 instants 1950-2100 at 14 sites: polar (both), tropical, mid-latitude, both hemispheres.

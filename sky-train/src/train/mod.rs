@@ -34,8 +34,6 @@ pub enum Optimizer {
 /// What training needs to know.
 #[derive(Debug, Clone)]
 pub struct TrainConfig {
-    /// The sky model learned.
-    pub model: ModelKind,
     /// Hidden layer sizes (`[12]` is the paper's network).
     pub hidden: Vec<usize>,
     /// The optimiser.
@@ -50,7 +48,8 @@ pub struct TrainConfig {
     pub patience: usize,
     /// Stop as soon as the validation NRMSE is at most this.
     pub target_nrmse: f64,
-    /// Training-set sampling.
+    /// Training-set sampling of a model's skies ([`DataSet::training`]; captured skies are
+    /// sampled from their frames instead, see [`crate::captures`]).
     pub sampling: Sampling,
     /// Random starts tried (each a few iterations) before the best one is trained on.
     pub restarts: usize,
@@ -71,7 +70,6 @@ impl TrainConfig {
     #[must_use]
     pub fn new(model: ModelKind) -> Self {
         Self {
-            model,
             hidden: vec![12],
             optimizer: Optimizer::Lm,
             seed: 1,
@@ -86,6 +84,18 @@ impl TrainConfig {
             milestone: crate::eval::PaperFigures::of(model).map_or(0.0, |f| f.nrmse),
             irradiance_weight: 1.0,
         }
+    }
+}
+
+/// What early stopping watches: the mean NRMSE of a network on skies it is not trained on.
+pub trait Validation {
+    /// The mean NRMSE of `trained` over the validation skies.
+    fn mean_nrmse(&self, trained: &Trained) -> f64;
+}
+
+impl Validation for [TestImage] {
+    fn mean_nrmse(&self, trained: &Trained) -> f64 {
+        trained.mean_nrmse(self)
     }
 }
 
@@ -387,12 +397,16 @@ fn progress_bar(config: &TrainConfig) -> ProgressBar {
     bar
 }
 
-/// Trains a network as `config` says, on `set` (see [`DataSet::training`]), stopping early on
-/// the validation images.
+/// Trains a network as `config` says, on `set` (a model's skies, [`DataSet::training`], or
+/// captured frames, [`crate::captures`]), stopping early on `validation`.
 ///
 /// # Errors
-/// When the checkpoint cannot be read or written, or the model rejects a case.
-pub fn train(config: &TrainConfig, set: &DataSet, validation: &[TestImage]) -> Result<Trained> {
+/// When the checkpoint cannot be read or written.
+pub fn train<V: Validation + ?Sized>(
+    config: &TrainConfig,
+    set: &DataSet,
+    validation: &V,
+) -> Result<Trained> {
     let start = Instant::now();
     let scaling = Scaling::fit(set);
     let mut sizes = vec![6];
@@ -420,7 +434,7 @@ pub fn train(config: &TrainConfig, set: &DataSet, validation: &[TestImage]) -> R
         examples: set.inputs.len(),
         milestone_seconds: None,
     };
-    best.validation_nrmse = best.mean_nrmse(validation);
+    best.validation_nrmse = validation.mean_nrmse(&best);
     let mut milestone_seconds = None;
     let mut since_best = 0;
     let mut lm_state: Option<Lm> = None;
@@ -450,7 +464,7 @@ pub fn train(config: &TrainConfig, set: &DataSet, validation: &[TestImage]) -> R
             examples: set.inputs.len(),
             milestone_seconds: None,
         };
-        let v = current.mean_nrmse(validation);
+        let v = validation.mean_nrmse(&current);
         if v <= config.milestone && milestone_seconds.is_none() {
             milestone_seconds = Some(start.elapsed().as_secs_f64());
         }
