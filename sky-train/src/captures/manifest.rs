@@ -8,7 +8,7 @@
 //!
 //! [[frame]]
 //! file = "sky_0600.exr"
-//! time = "2026-06-21T06:00:00Z"   # UTC, RFC 3339 with `Z` (optional)
+//! time = "2026-06-21T06:00:00Z"   # RFC 3339, `Z` or a UTC offset like +02:00 (optional)
 //! exposure = 0.84                 # camera units per unit of radiance (optional, 1 when absent)
 //! ```
 //!
@@ -46,7 +46,7 @@ pub struct Manifest {
 pub struct FrameEntry {
     /// The OpenEXR file, relative to the folder.
     pub file: PathBuf,
-    /// The capture time, UTC (RFC 3339 with `Z`).
+    /// The capture time (RFC 3339: `Z` for UTC, or a UTC offset such as `+02:00`).
     pub time: Option<String>,
     /// Camera units per unit of radiance: pixel values are divided by it.
     pub exposure: Option<f64>,
@@ -111,13 +111,39 @@ impl Manifest {
 pub struct UnixTime(pub f64);
 
 impl UnixTime {
-    /// Parses `YYYY-MM-DDTHH:MM:SS[.fff]Z`.
+    /// Parses RFC 3339, `YYYY-MM-DDTHH:MM:SS[.fff]` followed by `Z` (UTC) or a UTC offset
+    /// `±HH:MM` (a camera's local time: `2026-06-21T08:00:00+02:00` is 06:00 UTC).
     ///
     /// # Errors
     /// When `s` is not of that form or a field is out of range.
     pub fn parse(s: &str) -> Result<Self> {
-        let bad = || anyhow::anyhow!("time `{s}`: expected UTC as YYYY-MM-DDTHH:MM:SSZ");
-        let body = s.trim().strip_suffix('Z').ok_or_else(bad)?;
+        let bad = || {
+            anyhow::anyhow!(
+                "time `{s}`: expected RFC 3339, YYYY-MM-DDTHH:MM:SS followed by Z or ±HH:MM"
+            )
+        };
+        let s = s.trim();
+        let (body, offset_seconds) = match s.strip_suffix(['Z', 'z']) {
+            Some(body) => (body, 0.0),
+            None => {
+                // `±HH:MM` at the end, after the seconds.
+                let split = s.len().checked_sub(6).ok_or_else(bad)?;
+                let (body, offset) = (s.get(..split).ok_or_else(bad)?, &s[split..]);
+                let sign = match offset.as_bytes()[0] {
+                    b'+' => 1.0,
+                    b'-' => -1.0,
+                    _ => return Err(bad()),
+                };
+                let (oh, om) = offset[1..].split_once(':').ok_or_else(bad)?;
+                let (Ok(oh), Ok(om)) = (oh.parse::<u32>(), om.parse::<u32>()) else {
+                    return Err(bad());
+                };
+                if oh > 23 || om > 59 || offset[1..].len() != 5 {
+                    return Err(bad());
+                }
+                (body, sign * f64::from(oh * 3600 + om * 60))
+            }
+        };
         let (date, time) = body.split_once(['T', ' ']).ok_or_else(bad)?;
         let (y, m, d) = crate::controller::parse_date(date).map_err(|_| bad())?;
         let mut hms = time.split(':');
@@ -130,7 +156,9 @@ impl UnixTime {
             return Err(bad());
         };
         sky_core::solar::UtcTime::new(y, m, d, h, mi, sec).map_err(|e| anyhow::anyhow!("{e}"))?;
-        Ok(Self::from_civil(y, m, d, h, mi, sec))
+        Ok(Self(
+            Self::from_civil(y, m, d, h, mi, sec).0 - offset_seconds,
+        ))
     }
 
     /// The instant `y-m-d h:mi:sec` UTC.
@@ -209,5 +237,31 @@ mod tests {
         assert_eq!(UnixTime(t.0 + 45.0).rfc3339(), "2026-06-22T00:00:15Z");
         assert!(UnixTime::parse("2026-06-21T06:00:00").is_err());
         assert!(UnixTime::parse("2026-02-30T06:00:00Z").is_err());
+    }
+
+    #[test]
+    fn utc_offsets_are_local_times() {
+        let utc = UnixTime::parse("2026-06-21T06:00:00Z").expect("valid");
+        for local in [
+            "2026-06-21T08:00:00+02:00",
+            "2026-06-21T00:30:00-05:30",
+            "2026-06-21T06:00:00+00:00",
+            "2026-06-21T06:00:00z",
+        ] {
+            assert_eq!(UnixTime::parse(local).expect(local), utc, "{local}");
+        }
+        // Across midnight, backwards.
+        let t = UnixTime::parse("2026-01-01T01:00:00+03:00").expect("valid");
+        assert_eq!(t.rfc3339(), "2025-12-31T22:00:00Z");
+        for bad in [
+            "2026-06-21T08:00:00+2:00",
+            "2026-06-21T08:00:00+24:00",
+            "2026-06-21T08:00:00+02:60",
+            "2026-06-21T08:00:00*02:00",
+            "+02:00",
+        ] {
+            let e = UnixTime::parse(bad).expect_err(bad).to_string();
+            assert!(e.contains(bad) && e.contains("RFC 3339"), "{e}");
+        }
     }
 }

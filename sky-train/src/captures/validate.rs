@@ -29,7 +29,6 @@ pub fn config() -> TrainConfig {
         max_iterations: 150,
         max_seconds: 60.0,
         patience: 20,
-        milestone: PAPER_KIDER_NRMSE,
         irradiance_weight: 0.0,
         // The rest as for the other sky without a turbidity input (AOAS); its `sampling` is
         // not used: captured views come from the frames.
