@@ -40,7 +40,7 @@ pub fn hemisphere_directions(width: u32, height: u32) -> Vec<Vec3> {
 }
 
 /// Runs `f` `runs` times after one warm-up run and returns the median duration.
-fn median_time(runs: usize, mut f: impl FnMut()) -> Duration {
+pub(crate) fn median_time(runs: usize, mut f: impl FnMut()) -> Duration {
     f();
     let mut times: Vec<Duration> = (0..runs.max(1))
         .map(|_| {
@@ -54,7 +54,7 @@ fn median_time(runs: usize, mut f: impl FnMut()) -> Duration {
 }
 
 #[allow(clippy::cast_precision_loss)]
-fn per_direction(t: Duration, n: usize) -> f64 {
+pub(crate) fn per_direction(t: Duration, n: usize) -> f64 {
     t.as_secs_f64() * 1e9 / n.max(1) as f64
 }
 

@@ -52,6 +52,10 @@ pub enum Command {
     Eval(EvalArgs),
     /// Write the Rust source of a weight file for compile-time embedding in sky-core.
     Export(ExportArgs),
+    /// Seed 000's 6-12-3 network against 6-6-3, 6-24-3, 6-48-3 and 6-12-12-3, each trained the
+    /// same way: mean NRMSE and irradiance on the paper's protocol, bytes, ns/direction (a
+    /// Markdown table on stdout).
+    SizeStudy(SizeStudyArgs),
     /// Fuzz sky-core's weight-file decoder with mutated files for a bounded time.
     FuzzWeights(FuzzArgs),
     /// Fit a model's spherical-harmonics coefficients as polynomials in sun zenith and
@@ -142,6 +146,23 @@ fn full_scale_lux(s: &str) -> Result<f32, String> {
 
 fn date(s: &str) -> Result<(i32, u32, u32), String> {
     crate::controller::parse_date(s).map_err(|e| e.0)
+}
+
+/// `size-study`'s arguments.
+#[derive(Args)]
+pub struct SizeStudyArgs {
+    /// The sky model to learn (preetham or hosek).
+    #[arg(long, default_value = "preetham")]
+    pub model: ModelKind,
+    /// Training wall-time budget per network, seconds (1 to 86400).
+    #[arg(long, default_value_t = 300.0, value_parser = seconds)]
+    pub seconds: f64,
+    /// Random seed (initial weights, view jitter).
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Hidden layouts to train, e.g. `6 12 24 48 12,12` (each one of those).
+    #[arg(long, num_args = 1.., value_delimiter = ' ', default_values = ["6", "12", "24", "48", "12,12"])]
+    pub layouts: Vec<String>,
 }
 
 /// `fuzz-weights`' arguments.
@@ -567,6 +588,29 @@ pub fn execute(command: Command, input: &mut dyn BufRead, output: &mut dyn Write
         Command::Showcase(args) => showcase(&args, output),
         Command::Train(args) => train_command(&args, output),
         Command::Eval(args) => eval_command(&args, output),
+        Command::SizeStudy(args) => {
+            if !matches!(args.model, ModelKind::Preetham | ModelKind::Hosek) {
+                bail!(
+                    "--model {}: the size study trains on preetham or hosek",
+                    args.model
+                );
+            }
+            let layouts = args
+                .layouts
+                .iter()
+                .map(|l| {
+                    l.split(',')
+                        .map(|h| h.trim().parse::<usize>())
+                        .collect::<Result<Vec<_>, _>>()
+                        .map_err(|_| {
+                            anyhow::anyhow!("--layouts `{l}`: expected sizes like 12 or 12,12")
+                        })
+                })
+                .collect::<Result<Vec<_>>>()?;
+            let rows = crate::study::run(args.model, &layouts, args.seconds, args.seed, true)?;
+            write!(output, "{}", crate::study::table(args.model, &rows))?;
+            Ok(())
+        }
         Command::FuzzWeights(args) => {
             let stats = crate::fuzz::fuzz_weights(
                 std::time::Duration::from_secs_f64(args.seconds),

@@ -16,5 +16,6 @@ pub mod reference;
 pub mod render;
 pub mod sh;
 pub mod sources;
+pub mod study;
 pub mod style_file;
 pub mod train;

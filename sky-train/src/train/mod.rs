@@ -450,9 +450,9 @@ pub fn train<V: Validation + ?Sized>(
         ),
         _ => None,
     };
-    let (mut net, first_iteration) = match resumed {
-        Some((net, it)) => (net, it),
-        None => (initial_net(config, &sizes, set, &scaling), 0),
+    let (mut net, first_iteration, resumed_lambda) = match resumed {
+        Some(r) => (r.net, r.iteration, r.lambda),
+        None => (initial_net(config, &sizes, set, &scaling), 0, None),
     };
     let mut best = Trained {
         net: net.clone(),
@@ -474,7 +474,11 @@ pub fn train<V: Validation + ?Sized>(
         let moved = match config.optimizer {
             Optimizer::Lm => {
                 let problem = Problem::new(&net, set, &scaling, config.irradiance_weight);
-                let state = lm_state.get_or_insert_with(|| Lm::new(&problem, net.params.clone()));
+                let state = lm_state.get_or_insert_with(|| {
+                    let mut lm = Lm::new(&problem, net.params.clone());
+                    lm.lambda = resumed_lambda.unwrap_or(lm.lambda);
+                    lm
+                });
                 let moved = state.step(&problem);
                 net.params.clone_from(&state.params);
                 moved
@@ -514,7 +518,8 @@ pub fn train<V: Validation + ?Sized>(
             best.validation_nrmse
         ));
         if let Some(path) = &config.checkpoint {
-            checkpoint::write(path, &net, iteration + 1)?;
+            let lambda = lm_state.as_ref().map(|lm| lm.lambda);
+            checkpoint::write(path, &net, iteration + 1, lambda)?;
         }
         let elapsed = start.elapsed().as_secs_f64();
         if !moved
@@ -568,8 +573,9 @@ fn initial_net(config: &TrainConfig, sizes: &[usize], set: &DataSet, scaling: &S
     best.map_or_else(|| Net::random(sizes, &mut rng, 1.0), |(_, n)| n)
 }
 
-/// Checkpoints: the iteration count and the parameters, written atomically after every
-/// iteration, so that a killed run resumes where it stopped.
+/// Checkpoints: the iteration count, Levenberg-Marquardt's damping and the parameters, written
+/// atomically after every iteration, so that a killed run resumes where it stopped and, with LM,
+/// continues exactly as the run would have (backprop resumes with zero momentum).
 pub mod checkpoint {
     use std::path::Path;
 
@@ -578,33 +584,47 @@ pub mod checkpoint {
     use super::Net;
     use crate::image_io::write_text;
 
-    /// Writes `net` and `iteration` to `path`.
+    /// What a checkpoint holds.
+    #[derive(Debug, Clone, PartialEq)]
+    pub struct Resume {
+        /// The network after `iteration` iterations.
+        pub net: Net,
+        /// Iterations done.
+        pub iteration: usize,
+        /// LM's damping λ at that point (`None` for backprop or a version-1 file).
+        pub lambda: Option<f64>,
+    }
+
+    /// Writes `net`, `iteration` and LM's `lambda` to `path`.
     ///
     /// # Errors
     /// On I/O errors.
-    pub fn write(path: &Path, net: &Net, iteration: usize) -> Result<()> {
+    pub fn write(path: &Path, net: &Net, iteration: usize, lambda: Option<f64>) -> Result<()> {
         let sizes: Vec<String> = net.sizes.iter().map(ToString::to_string).collect();
         let params: Vec<String> = net.params.iter().map(|p| format!("{p:e}")).collect();
+        let lambda = lambda.map_or_else(|| "none".to_string(), |l| format!("{l:e}"));
         write_text(
             path,
             &format!(
-                "sky-train checkpoint 1\nsizes {}\niteration {iteration}\n{}\n",
+                "sky-train checkpoint 2\nsizes {}\niteration {iteration}\nlambda {lambda}\n{}\n",
                 sizes.join(" "),
                 params.join("\n")
             ),
         )
     }
 
-    /// Reads a checkpoint of a network with `sizes`.
+    /// Reads a checkpoint of a network with `sizes` (version 2, or version 1 without λ).
     ///
     /// # Errors
     /// When the file cannot be read or is not a checkpoint of that shape.
-    pub fn read(path: &Path, sizes: &[usize]) -> Result<(Net, usize)> {
+    pub fn read(path: &Path, sizes: &[usize]) -> Result<Resume> {
         let text = std::fs::read_to_string(path)?;
-        let mut lines = text.lines();
-        if lines.next() != Some("sky-train checkpoint 1") {
-            bail!("not a sky-train checkpoint");
-        }
+        let mut lines = text.lines().peekable();
+        let version = match lines.next() {
+            Some("sky-train checkpoint 1") => 1,
+            Some("sky-train checkpoint 2") => 2,
+            _ => bail!("not a sky-train checkpoint (version 1 or 2)"),
+        };
         let found: Vec<usize> = lines
             .next()
             .and_then(|l| l.strip_prefix("sizes "))
@@ -618,16 +638,94 @@ pub mod checkpoint {
             .and_then(|l| l.strip_prefix("iteration "))
             .and_then(|l| l.parse().ok())
             .ok_or_else(|| anyhow::anyhow!("no iteration line"))?;
+        let lambda = if version == 2 {
+            match lines.next().and_then(|l| l.strip_prefix("lambda ")) {
+                Some("none") => None,
+                Some(l) => Some(
+                    l.parse::<f64>()
+                        .ok()
+                        .filter(|l| l.is_finite() && *l > 0.0)
+                        .ok_or_else(|| anyhow::anyhow!("lambda `{l}` is not a positive number"))?,
+                ),
+                None => bail!("no lambda line"),
+            }
+        } else {
+            None
+        };
         let params: Vec<f64> = lines.map(str::parse).collect::<Result<_, _>>()?;
         if params.len() != Net::param_count(sizes) || params.iter().any(|p| !p.is_finite()) {
             bail!("the checkpoint's parameters are incomplete or not finite");
         }
-        Ok((
-            Net {
+        Ok(Resume {
+            net: Net {
                 sizes: sizes.to_vec(),
                 params,
             },
             iteration,
-        ))
+            lambda,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A small Preetham training problem: 3 turbidities x 4 sun zeniths x 4 x 8 views.
+    fn small() -> (TrainConfig, DataSet, Vec<TestImage>) {
+        let mut config = TrainConfig::new(ModelKind::Preetham);
+        config.sampling.turbidities = vec![2.0, 4.0, 6.0];
+        config.sampling.sun_zeniths = 4;
+        (config.sampling.view_zeniths, config.sampling.view_azimuths) = (4, 8);
+        config.progress = false;
+        config.restarts = 2;
+        config.patience = 1000;
+        let set = DataSet::training(ModelKind::Preetham, &config.sampling).expect("valid");
+        let validation = dataset::test_set(ModelKind::Preetham, &[3.0], &[0.5]).expect("valid");
+        (config, set, validation)
+    }
+
+    /// The same seed gives the same network bit for bit, whatever the threads did.
+    #[test]
+    fn training_is_deterministic() {
+        let (mut config, set, validation) = small();
+        config.max_iterations = 4;
+        let a = train(&config, &set, validation.as_slice()).expect("trains");
+        let b = train(&config, &set, validation.as_slice()).expect("trains");
+        assert_eq!(a.net, b.net);
+        config.seed += 1;
+        let c = train(&config, &set, validation.as_slice()).expect("trains");
+        assert_ne!(a.net, c.net, "another seed, another start");
+    }
+
+    /// A run stopped after 3 iterations and resumed from its checkpoint to 6 ends exactly where
+    /// an uninterrupted run of 6 does.
+    #[test]
+    fn a_resumed_run_continues_exactly() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let (mut config, set, validation) = small();
+        let sizes = [6, 12, 3];
+        config.max_iterations = 6;
+        config.checkpoint = Some(dir.path().join("straight.ckpt"));
+        train(&config, &set, validation.as_slice()).expect("trains");
+        let straight = checkpoint::read(&dir.path().join("straight.ckpt"), &sizes).expect("reads");
+
+        config.checkpoint = Some(dir.path().join("resumed.ckpt"));
+        config.max_iterations = 3;
+        train(&config, &set, validation.as_slice()).expect("trains");
+        let halfway = checkpoint::read(&dir.path().join("resumed.ckpt"), &sizes).expect("reads");
+        assert_eq!(halfway.iteration, 3);
+        config.max_iterations = 6;
+        train(&config, &set, validation.as_slice()).expect("resumes");
+        let resumed = checkpoint::read(&dir.path().join("resumed.ckpt"), &sizes).expect("reads");
+        assert_eq!(resumed, straight);
+        assert_eq!(resumed.iteration, 6);
+        assert!(resumed.lambda.is_some());
+
+        // A checkpoint of another shape is refused, naming both.
+        let e = checkpoint::read(&dir.path().join("resumed.ckpt"), &[6, 24, 3])
+            .expect_err("wrong shape")
+            .to_string();
+        assert!(e.contains("[6, 12, 3]") && e.contains("[6, 24, 3]"), "{e}");
     }
 }
