@@ -40,7 +40,7 @@ pub fn hemisphere_directions(width: u32, height: u32) -> Vec<Vec3> {
 }
 
 /// Runs `f` `runs` times after one warm-up run and returns the median duration.
-pub(crate) fn median_time(runs: usize, mut f: impl FnMut()) -> Duration {
+fn median_time(runs: usize, mut f: impl FnMut()) -> Duration {
     f();
     let mut times: Vec<Duration> = (0..runs.max(1))
         .map(|_| {

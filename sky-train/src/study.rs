@@ -8,6 +8,7 @@
 //! scaling and eq. 10's rotation folded into the first layer, 16 directions a step).
 
 use std::sync::Arc;
+use std::time::Instant;
 
 use anyhow::{Result, bail};
 use sky_core::neural::NeuralSky;
@@ -66,44 +67,73 @@ pub fn run(
     config.progress = progress;
     let set = train::dataset::DataSet::training(model, &config.sampling)?;
     let validation = train::validation_set(model)?;
-    let dirs = bench::hemisphere_directions(1024, 512);
-    layouts
+    let trained = layouts
         .iter()
         .map(|hidden| {
             config.hidden.clone_from(hidden);
-            let trained = train::train(&config, &set, validation.as_slice())?;
-            measure(model, Arc::new(trained), &dirs)
+            Ok(Arc::new(train::train(
+                &config,
+                &set,
+                validation.as_slice(),
+            )?))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let ns = time_per_direction(model, &trained)?;
+    trained
+        .into_iter()
+        .zip(ns)
+        .map(|(trained, ns_per_direction)| {
+            let net = Arc::clone(&trained);
+            let network = move |p: &SkyParams| -> Result<Box<dyn SkySource>> {
+                Ok(Box::new(StudySky::new(&net, model, p)?))
+            };
+            let evaluation = crate::eval::evaluate(model, &network)?;
+            let parameters = trained.net.params.len();
+            Ok(Row {
+                hidden: trained.net.sizes[1..trained.net.sizes.len() - 1].to_vec(),
+                parameters,
+                bytes: 4 * parameters,
+                nrmse: evaluation.mean_nrmse(),
+                irradiance: evaluation.mean_irradiance_relative(),
+                ns_per_direction,
+                iterations: trained.iterations,
+                seconds: trained.seconds,
+            })
         })
         .collect()
 }
 
-fn measure(model: ModelKind, trained: Arc<Trained>, dirs: &[Vec3]) -> Result<Row> {
-    let net = Arc::clone(&trained);
-    let network = move |p: &SkyParams| -> Result<Box<dyn SkySource>> {
-        Ok(Box::new(StudySky::new(&net, model, p)?))
-    };
-    let evaluation = crate::eval::evaluate(model, &network)?;
-    let sky = StudySky::new(
-        &trained,
-        model,
-        &SkyParams::for_model(model, 0.9f64.to_degrees(), 17.0, 3.0),
-    )?;
+/// Nanoseconds per direction of each network's batch evaluation over 1024 × 512 directions,
+/// one thread: the median of 15 rounds, each round timing every network once in turn, so that
+/// the machine's load drifts over all of them alike.
+fn time_per_direction(model: ModelKind, trained: &[Arc<Trained>]) -> Result<Vec<f64>> {
+    const ROUNDS: usize = 15;
+    let dirs = bench::hemisphere_directions(1024, 512);
+    let params = SkyParams::for_model(model, 0.9f64.to_degrees(), 17.0, 3.0);
+    let skies = trained
+        .iter()
+        .map(|t| StudySky::new(t, model, &params))
+        .collect::<Result<Vec<_>>>()?;
     let mut out = vec![Vec3::ZERO; dirs.len()];
-    let t = bench::median_time(15, || {
-        sky.rgb_batch(std::hint::black_box(dirs), &mut out);
-        std::hint::black_box(&out);
-    });
-    let parameters = trained.net.params.len();
-    Ok(Row {
-        hidden: trained.net.sizes[1..trained.net.sizes.len() - 1].to_vec(),
-        parameters,
-        bytes: 4 * parameters,
-        nrmse: evaluation.mean_nrmse(),
-        irradiance: evaluation.mean_irradiance_relative(),
-        ns_per_direction: bench::per_direction(t, dirs.len()),
-        iterations: trained.iterations,
-        seconds: trained.seconds,
-    })
+    let mut times = vec![Vec::with_capacity(ROUNDS); skies.len()];
+    for round in 0..=ROUNDS {
+        for (sky, t) in skies.iter().zip(&mut times) {
+            let start = Instant::now();
+            sky.rgb_batch(std::hint::black_box(&dirs), &mut out);
+            std::hint::black_box(&out);
+            if round > 0 {
+                // Round 0 warms up.
+                t.push(start.elapsed());
+            }
+        }
+    }
+    Ok(times
+        .into_iter()
+        .map(|mut t| {
+            t.sort();
+            bench::per_direction(t[t.len() / 2], dirs.len())
+        })
+        .collect())
 }
 
 /// The study's table in Markdown.

@@ -218,11 +218,12 @@ impl Lm {
         }
     }
 
-    /// One iteration: builds the normal equations and tries damped steps until one lowers the
-    /// cost. Returns false when no step helps (converged or stuck).
+    /// One iteration: builds the normal equations and tries ever more damped steps until one
+    /// lowers the cost. Returns false when none does up to λ = 10¹² (converged or stuck).
     pub fn step(&mut self, problem: &impl LeastSquares) -> bool {
         let acc = evaluate(problem, &self.params, true);
-        for _ in 0..12 {
+        // From λ = 10⁻¹² to 10¹² in steps of 4 takes 40 tries.
+        for _ in 0..48 {
             if let Some(delta) = damped_step(&acc.jtj, &acc.jtr, self.lambda) {
                 let trial: Vec<f64> = self.params.iter().zip(&delta).map(|(p, d)| p + d).collect();
                 let cost = evaluate(problem, &trial, false).cost;
