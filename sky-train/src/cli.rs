@@ -244,6 +244,10 @@ pub struct TrainArgs {
     /// Checkpoint file: resumed from when it exists, rewritten after every iteration.
     #[arg(long, value_name = "FILE")]
     pub checkpoint: Option<PathBuf>,
+    /// Start from a 6-12-3 weight file (its network and its input/output scaling) instead of
+    /// random weights: continues an earlier training on new samples or budgets.
+    #[arg(long, value_name = "FILE")]
+    pub init_weights: Option<PathBuf>,
     /// Weight file to write (single hidden layer only). Written atomically.
     #[arg(long, value_name = "FILE")]
     pub out: Option<PathBuf>,
@@ -824,7 +828,12 @@ fn train_command(args: &TrainArgs, output: &mut dyn Write) -> Result<()> {
     config.max_iterations = args.max_iterations as usize;
     config.target_nrmse = args.target_nrmse;
     config.checkpoint.clone_from(&args.checkpoint);
-    config.milestone = train::Milestone::paper(args.model)?;
+    if let Some(path) = &args.init_weights {
+        config.init = Some(export::from_weights(&export::read_weights::<12>(path)?)?);
+    } else {
+        // Timed from scratch only.
+        config.milestone = train::Milestone::paper(args.model)?;
+    }
     let started = std::time::Instant::now();
     let set = train::dataset::DataSet::training(args.model, &config.sampling)?;
     let sampling = started.elapsed().as_secs_f64();

@@ -95,6 +95,36 @@ pub fn to_weights_of<const H: usize>(
     })
 }
 
+/// The trainer's f64 network and scaling of `weights` (the inverse of [`to_weights_of`]), to
+/// continue training from a weight file.
+///
+/// # Errors
+/// When the output scale differs between channels (the trainer has one).
+pub fn from_weights<const H: usize>(
+    weights: &NeuralWeights<H>,
+) -> Result<(crate::train::net::Net, crate::train::Scaling)> {
+    let [r, g, b] = weights.output_scale;
+    if r != g || g != b {
+        bail!("the weights scale their channels differently ({r}, {g}, {b})");
+    }
+    let mut params = Vec::with_capacity(crate::train::net::Net::param_count(&[6, H, 3]));
+    params.extend(weights.hidden.iter().flatten().map(|&w| f64::from(w)));
+    params.extend(weights.hidden_bias.map(f64::from));
+    params.extend(weights.output.iter().flatten().map(|&w| f64::from(w)));
+    params.extend(weights.output_bias.map(f64::from));
+    Ok((
+        crate::train::net::Net {
+            sizes: vec![6, H, 3],
+            params,
+        },
+        crate::train::Scaling {
+            input_offset: weights.input_offset.map(f64::from),
+            input_scale: weights.input_scale.map(f64::from),
+            output_scale: f64::from(r),
+        },
+    ))
+}
+
 /// Encodes `weights` to bytes.
 ///
 /// # Errors
@@ -313,4 +343,38 @@ fn provenance<const H: usize>(weights: &NeuralWeights<H>, file: &str) -> Vec<Str
             weights.seed, weights.nrmse
         ),
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use sky_core::neural::pretrained;
+
+    /// A shipped weight set goes to the trainer's network and back unchanged.
+    #[test]
+    fn weights_round_trip_through_the_trainer() {
+        for (weights, model) in [
+            (pretrained::PREETHAM, ModelKind::Preetham),
+            (pretrained::HOSEK, ModelKind::Hosek),
+        ] {
+            let (net, scaling) = from_weights(&weights).expect("one output scale");
+            let trained = Trained {
+                net,
+                scaling,
+                validation_nrmse: f64::from(weights.nrmse),
+                iterations: 0,
+                seconds: 0.0,
+                examples: 0,
+                milestone: None,
+            };
+            let back = to_weights::<12>(&trained, model, weights.seed).expect("6-12-3");
+            assert_eq!(back.hidden, weights.hidden);
+            assert_eq!(back.hidden_bias, weights.hidden_bias);
+            assert_eq!(back.output, weights.output);
+            assert_eq!(back.output_bias, weights.output_bias);
+            assert_eq!(back.input_offset, weights.input_offset);
+            assert_eq!(back.input_scale, weights.input_scale);
+            assert_eq!(back.output_scale, weights.output_scale);
+        }
+    }
 }

@@ -10,7 +10,7 @@ pub mod net;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use indicatif::{ProgressBar, ProgressStyle};
 use rand::SeedableRng;
 use sky_core::Vec3;
@@ -55,6 +55,9 @@ pub struct TrainConfig {
     pub restarts: usize,
     /// Resume from and save to this checkpoint file.
     pub checkpoint: Option<PathBuf>,
+    /// Start from this network and scaling (e.g. a weight file's, [`crate::export::from_weights`])
+    /// instead of random starts; a checkpoint still takes precedence.
+    pub init: Option<(Net, Scaling)>,
     /// Show a progress bar.
     pub progress: bool,
     /// Record when the network first reaches this mean NRMSE on these images (seed 000's
@@ -81,6 +84,7 @@ impl TrainConfig {
             sampling: Sampling::paper(model),
             restarts: 4,
             checkpoint: None,
+            init: None,
             progress: true,
             milestone: None,
             irradiance_weight: 1.0,
@@ -437,7 +441,10 @@ pub fn train<V: Validation + ?Sized>(
     validation: &V,
 ) -> Result<Trained> {
     let start = Instant::now();
-    let scaling = Scaling::fit(set);
+    let scaling = config
+        .init
+        .as_ref()
+        .map_or_else(|| Scaling::fit(set), |(_, s)| s.clone());
     let mut sizes = vec![6];
     sizes.extend(&config.hidden);
     sizes.push(3);
@@ -452,7 +459,14 @@ pub fn train<V: Validation + ?Sized>(
     };
     let (mut net, first_iteration, resumed_lambda) = match resumed {
         Some(r) => (r.net, r.iteration, r.lambda),
-        None => (initial_net(config, &sizes, set, &scaling), 0, None),
+        None => match &config.init {
+            Some((net, _)) if net.sizes == sizes => (net.clone(), 0, None),
+            Some((net, _)) => bail!(
+                "the initial network is {:?}, this run trains {sizes:?}",
+                net.sizes
+            ),
+            None => (initial_net(config, &sizes, set, &scaling), 0, None),
+        },
     };
     let mut best = Trained {
         net: net.clone(),
