@@ -3,10 +3,11 @@
 
 use std::path::Path;
 
-use sky_core::neural::{NeuralWeights, pretrained};
+use sky_core::neural::{NeuralSky, NeuralWeights, pretrained};
+use sky_core::{Sun, Vec3};
 use sky_train::eval::{self, Evaluation};
-use sky_train::export;
 use sky_train::sources::{ModelKind, Neural, SkyParams, SkySource};
+use sky_train::{bench, dispatch, export};
 
 fn evaluate(weights: &'static NeuralWeights<12>, model: ModelKind, kind: ModelKind) -> Evaluation {
     let network = move |p: &SkyParams| -> anyhow::Result<Box<dyn SkySource>> {
@@ -83,5 +84,51 @@ fn pretrained_constants_regenerate_from_the_weight_files() {
             generated == committed,
             "sky-core/src/neural/pretrained/{source} is not what `sky-train export` makes of {file}: regenerate it"
         );
+    }
+}
+
+/// `rgb_batch` compiled for the widest vectors this CPU has (AVX2 where present, as `sky-train`
+/// runs it) and for the baseline gives what `rgb` gives, bit for bit, over the benchmark's
+/// hemisphere and directions that are not unit, zero, infinite or NaN.
+#[test]
+fn batch_equals_one_direction_bit_for_bit_on_every_instruction_set() {
+    let mut dirs = bench::hemisphere_directions(256, 128);
+    for (i, d) in [
+        Vec3::ZERO,
+        Vec3::splat(f32::NAN),
+        Vec3::new(f32::INFINITY, 0.0, 1.0),
+        Vec3::new(0.0, f32::NEG_INFINITY, -1.0),
+        Vec3::new(1e-30, 0.0, 0.0),
+        Vec3::new(3e20, -1e20, 2e20),
+        Vec3::new(0.3, -0.2, -0.9),
+    ]
+    .into_iter()
+    .cycle()
+    .take(300)
+    .enumerate()
+    {
+        dirs.insert(i * 97 % dirs.len(), d);
+    }
+    for weights in [&pretrained::PREETHAM, &pretrained::HOSEK] {
+        let sky = NeuralSky::new(weights, Sun::new(0.9, 0.3).expect("valid"), 3.0).expect("valid");
+        let one: Vec<Vec3> = dirs.iter().map(|&d| sky.rgb(d)).collect();
+        let mut baseline = vec![Vec3::ZERO; dirs.len()];
+        sky.rgb_batch(&dirs, &mut baseline);
+        let mut widest = vec![Vec3::ZERO; dirs.len()];
+        dispatch::fastest(
+            #[inline(always)]
+            || sky.rgb_batch(&dirs, &mut widest),
+        );
+        for (i, d) in dirs.iter().enumerate() {
+            let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+            assert_eq!(bits(baseline[i]), bits(one[i]), "baseline, {d}");
+            assert_eq!(
+                bits(widest[i]),
+                bits(one[i]),
+                "{}, {d}",
+                dispatch::describe()
+            );
+            assert!(one[i].is_finite() && one[i].min_element() >= 0.0, "{d}");
+        }
     }
 }

@@ -47,6 +47,15 @@ pub const INPUTS: usize = 6;
 /// Number of network outputs: linear R, G, B.
 pub const OUTPUTS: usize = 3;
 
+/// The order of [`NeuralSky::rgb_batch`]'s operations. Step by step (each step of eqs. 4-7 done
+/// for every lane before the next, the hidden layer pipelined one neuron ahead) puts the lanes'
+/// long dependency chains (square roots, divisions) side by side, which an out-of-order CPU
+/// overlaps: 30 % faster on x86-64 than lane by lane. WebAssembly engines compile the
+/// instructions in the order given and spill the many live vectors that order has: there, lane
+/// by lane (each lane's whole chain, the compiler vectorising across lanes) is 10 % faster.
+/// Either order performs the same operations on each lane, with identical results.
+const STEP_BY_STEP: bool = !cfg!(target_arch = "wasm32");
+
 /// The network inputs that depend only on the sky, and eq. 10's rotation, checked against the
 /// trained domain: shared by [`NeuralSky`] and [`FixedNeuralSky`].
 struct SkyInputs {
@@ -172,27 +181,30 @@ impl<const H: usize> NeuralSky<H> {
     #[inline]
     #[must_use]
     pub fn rgb(&self, dir: Vec3) -> Vec3 {
-        let [r, g, b] = self.rgb_lanes([dir.x], [dir.y], [dir.z]);
+        let [r, g, b] = self.rgb_lanes::<1, STEP_BY_STEP>([dir.x], [dir.y], [dir.z]);
         Vec3::new(r[0], g[0], b[0])
     }
 
     /// [`rgb`](Self::rgb) for many directions: fills `out[i]` for every `i` below
     /// `min(dirs.len(), out.len())`, with the same results as `rgb` bit for bit. Directions are
-    /// evaluated sixteen at a time in SIMD-friendly lanes: four (SSE, WebAssembly SIMD) or two
-    /// (AVX2) vector registers per quantity, enough independent divisions in flight to keep the
-    /// vector units busy.
+    /// evaluated in groups of SIMD-friendly lanes: thirty-two (eight SSE or four AVX2 vector
+    /// registers per quantity), each step of the network done for all of them before the next,
+    /// so that the CPU overlaps their square roots and divisions; in WebAssembly sixteen (four
+    /// SIMD registers), one direction's chain after another, the order WebAssembly engines run
+    /// fastest. Both orders give the same results.
     #[inline(always)]
     pub fn rgb_batch(&self, dirs: &[Vec3], out: &mut [Vec3]) {
-        const LANES: usize = 16;
+        const LANES: usize = if STEP_BY_STEP { 32 } else { 16 };
         let n = dirs.len().min(out.len());
         let (dirs, out) = (&dirs[..n], &mut out[..n]);
         let mut chunks = dirs.chunks_exact(LANES);
         let mut outs = out.chunks_exact_mut(LANES);
         for (d, o) in (&mut chunks).zip(&mut outs) {
-            let x: [f32; LANES] = core::array::from_fn(|i| d[i].x);
-            let y: [f32; LANES] = core::array::from_fn(|i| d[i].y);
-            let z: [f32; LANES] = core::array::from_fn(|i| d[i].z);
-            let [r, g, b] = self.rgb_lanes(x, y, z);
+            let (mut x, mut y, mut z) = ([0.0; LANES], [0.0; LANES], [0.0; LANES]);
+            for i in 0..LANES {
+                (x[i], y[i], z[i]) = (d[i].x, d[i].y, d[i].z);
+            }
+            let [r, g, b] = self.rgb_lanes::<LANES, STEP_BY_STEP>(x, y, z);
             for (i, slot) in o.iter_mut().enumerate() {
                 *slot = Vec3::new(r[i], g[i], b[i]);
             }
@@ -202,39 +214,82 @@ impl<const H: usize> NeuralSky<H> {
         }
     }
 
-    /// Eqs. 4-7 for `L` directions given as coordinate lanes, without a branch. Every lane
-    /// performs the same operations in the same order whatever `L` is, so one direction and a
-    /// batch give identical results.
+    /// Eqs. 4-7 for `L` directions given as coordinate lanes, without a branch on the data, in
+    /// either order of [`STEP_BY_STEP`]. Every lane performs the same operations in the same
+    /// order whatever `L` and `STEP` are, so one direction and a batch give identical results.
     #[inline(always)]
-    fn rgb_lanes<const L: usize>(&self, x: [f32; L], y: [f32; L], z: [f32; L]) -> [[f32; L]; 3] {
-        let mut vx = [0.0; L];
-        let mut vy = [0.0; L];
-        let mut vz = [0.0; L];
-        let mut d = [0.0; L];
-        for i in 0..L {
-            let inv = math::rsqrt(x[i] * x[i] + y[i] * y[i] + z[i] * z[i]);
-            (vx[i], vy[i], vz[i]) = (x[i] * inv, y[i] * inv, z[i] * inv);
-            let (dx, dy, dz) = (vx[i] - self.sun.x, vy[i] - self.sun.y, vz[i] - self.sun.z);
-            let q = dx * dx + dy * dy + dz * dz;
-            d[i] = q * math::rsqrt(q);
-        }
-        // The three output sums as separate lanes, each updated in the same loop as the hidden
-        // activation: written this way (rather than as a [[f32; L]; 3] filled by a second loop)
-        // the lanes stay in vector registers in WebAssembly's SIMD and SSE/AVX alike.
+    fn rgb_lanes<const L: usize, const STEP: bool>(
+        &self,
+        x: [f32; L],
+        y: [f32; L],
+        z: [f32; L],
+    ) -> [[f32; L]; 3] {
+        // The inputs of eq. 4: the view direction normalised, and d = |v − s|.
+        let (mut vx, mut vy, mut vz, mut d) = ([0.0; L], [0.0; L], [0.0; L], [0.0; L]);
+        // The three output sums (eq. 6), each lane's starting from the bias.
         let [mut r, mut g, mut b] = self.output_bias.map(|bias| [bias; L]);
-        for j in 0..H {
+        if STEP {
+            let mut norm2 = [0.0; L];
             for i in 0..L {
-                // Eq. 4: the hidden neuron's weighted sum (input scaling and eq. 10 folded in).
-                let h = self.constant[j]
-                    + self.coeff_x[j] * vx[i]
-                    + self.coeff_y[j] * vy[i]
-                    + self.coeff_z[j] * vz[i]
-                    + self.coeff_d[j] * d[i];
-                // Eq. 5: f(h) = 1/(1 + h²).
-                let a = 1.0 / (1.0 + h * h);
-                r[i] += self.output[0][j] * a;
-                g[i] += self.output[1][j] * a;
-                b[i] += self.output[2][j] * a;
+                norm2[i] = x[i] * x[i] + y[i] * y[i] + z[i] * z[i];
+            }
+            let inv = math::rsqrt_lanes(norm2);
+            let mut q = [0.0; L];
+            for i in 0..L {
+                (vx[i], vy[i], vz[i]) = (x[i] * inv[i], y[i] * inv[i], z[i] * inv[i]);
+                let (dx, dy, dz) = (vx[i] - self.sun.x, vy[i] - self.sun.y, vz[i] - self.sun.z);
+                q[i] = dx * dx + dy * dy + dz * dz;
+            }
+            let inv_d = math::rsqrt_lanes(q);
+            for i in 0..L {
+                d[i] = q[i] * inv_d[i];
+            }
+            // The hidden layer, pipelined: neuron j + 1's activation is computed before neuron
+            // j's is added to the outputs, so its divisions overlap that work.
+            let v = [vx, vy, vz, d];
+            let mut a = if H > 0 {
+                self.activation(0, &v)
+            } else {
+                [0.0; L]
+            };
+            for j in 0..H {
+                let next = if j + 1 < H {
+                    self.activation(j + 1, &v)
+                } else {
+                    a
+                };
+                for i in 0..L {
+                    r[i] += self.output[0][j] * a[i];
+                }
+                for i in 0..L {
+                    g[i] += self.output[1][j] * a[i];
+                }
+                for i in 0..L {
+                    b[i] += self.output[2][j] * a[i];
+                }
+                a = next;
+            }
+        } else {
+            for i in 0..L {
+                let inv = math::rsqrt(x[i] * x[i] + y[i] * y[i] + z[i] * z[i]);
+                (vx[i], vy[i], vz[i]) = (x[i] * inv, y[i] * inv, z[i] * inv);
+                let (dx, dy, dz) = (vx[i] - self.sun.x, vy[i] - self.sun.y, vz[i] - self.sun.z);
+                let q = dx * dx + dy * dy + dz * dz;
+                d[i] = q * math::rsqrt(q);
+            }
+            for j in 0..H {
+                for i in 0..L {
+                    // Eqs. 4-5, as in `activation`.
+                    let h = self.constant[j]
+                        + self.coeff_x[j] * vx[i]
+                        + self.coeff_y[j] * vy[i]
+                        + self.coeff_z[j] * vz[i]
+                        + self.coeff_d[j] * d[i];
+                    let a = 1.0 / (1.0 + h * h);
+                    r[i] += self.output[0][j] * a;
+                    g[i] += self.output[1][j] * a;
+                    b[i] += self.output[2][j] * a;
+                }
             }
         }
         // Eq. 7 through eq. 6's output activation: L_s(f(z)) = ½ z² (see the module docs);
@@ -246,6 +301,29 @@ impl<const H: usize> NeuralSky<H> {
             b[i] = math::at_most(sb * b[i] * b[i], f32::MAX);
         }
         [r, g, b]
+    }
+
+    /// Hidden neuron `j`'s activation (eqs. 4-5) in each lane, from the inputs `[v_x, v_y, v_z,
+    /// d]`: the weighted sum (input scaling and eq. 10 folded in), then f(h) = 1/(1 + h²).
+    #[inline(always)]
+    fn activation<const L: usize>(&self, j: usize, [vx, vy, vz, d]: &[[f32; L]; 4]) -> [f32; L] {
+        let mut h = [self.constant[j]; L];
+        for i in 0..L {
+            h[i] += self.coeff_x[j] * vx[i];
+        }
+        for i in 0..L {
+            h[i] += self.coeff_y[j] * vy[i];
+        }
+        for i in 0..L {
+            h[i] += self.coeff_z[j] * vz[i];
+        }
+        for i in 0..L {
+            h[i] += self.coeff_d[j] * d[i];
+        }
+        for h in &mut h {
+            *h = 1.0 / (1.0 + *h * *h);
+        }
+        h
     }
 }
 
@@ -341,7 +419,7 @@ mod tests {
     fn batch_equals_single_and_outputs_are_finite() {
         let w = weights();
         let sky = NeuralSky::new(&w, Sun::new(0.4, 1.0).expect("valid"), 2.5).expect("valid");
-        let dirs = [
+        let special = [
             Vec3::new(0.0, 0.0, 1.0),
             Vec3::new(1.0, 2.0, -3.0),
             Vec3::ZERO,
@@ -349,8 +427,22 @@ mod tests {
             Vec3::new(f32::INFINITY, 0.0, 1.0),
             Vec3::new(1e-30, 0.0, 0.0),
         ];
-        let mut out = [Vec3::ONE; 6];
+        // Two full lane groups and a remainder: the special directions spread over the lanes,
+        // between ordinary ones.
+        let dirs: [Vec3; 70] = core::array::from_fn(|i| match i % 7 {
+            6 => geom::direction(0.02 * i as f32, 0.3 * i as f32),
+            k => special[(k + i / 7) % special.len()],
+        });
+        let mut out = [Vec3::ONE; 70];
         sky.rgb_batch(&dirs, &mut out);
+        // Both orders of the operations (the batch uses one, by target) agree.
+        let lanes: [[f32; 32]; 3] = core::array::from_fn(|k| core::array::from_fn(|i| dirs[i][k]));
+        let step_by_step = sky.rgb_lanes::<32, true>(lanes[0], lanes[1], lanes[2]);
+        let lane_by_lane = sky.rgb_lanes::<32, false>(lanes[0], lanes[1], lanes[2]);
+        assert_eq!(
+            step_by_step.map(|c| c.map(f32::to_bits)),
+            lane_by_lane.map(|c| c.map(f32::to_bits))
+        );
         for (d, o) in dirs.iter().zip(out) {
             assert_eq!(
                 o.to_array().map(f32::to_bits),
