@@ -213,6 +213,13 @@ fn neural(dirs: &[Vec3], runs: usize, results: &mut Vec<Measurement>) -> Result<
             );
         },
     );
+    if dispatch::has_avx2_fma() {
+        m(
+            "neural 6-12-3 rgb_batch_avx2 (AVX2 + FMA)",
+            Some(peer),
+            &mut |d, o| dispatch::neural_batch(&sky, d, o),
+        );
+    }
     Ok(())
 }
 

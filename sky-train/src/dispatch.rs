@@ -5,6 +5,12 @@
 //! with AVX2 (8 lanes) when the CPU running the program has it, so one binary runs everywhere
 //! and at full width where it can. Both paths perform the same IEEE operations (no fused
 //! multiply-add), so their results are identical bit for bit.
+//!
+//! The neural sky has a kernel of its own for AVX2 with fused multiply-add
+//! ([`sky_core::NeuralSky::rgb_batch_avx2`], about 30 % faster, rounding differently):
+//! [`neural_batch`] picks it.
+
+use sky_core::{NeuralSky, Vec3};
 
 /// Runs `f`, compiled with AVX2 enabled when the CPU supports it.
 ///
@@ -23,6 +29,34 @@ pub fn fastest<R>(f: impl FnOnce() -> R) -> R {
         return unsafe { avx2(f) };
     }
     f()
+}
+
+/// Fills `out` with `sky`'s radiance towards `dirs` by the fastest kernel this CPU runs:
+/// [`NeuralSky::rgb_batch_avx2`] where it has AVX2 and FMA, else [`NeuralSky::rgb_batch`] through
+/// [`fastest`].
+pub fn neural_batch<const H: usize>(sky: &NeuralSky<H>, dirs: &[Vec3], out: &mut [Vec3]) {
+    #[cfg(target_arch = "x86_64")]
+    if has_avx2_fma() {
+        // SAFETY: the CPU has AVX2 and FMA, which was detected just above.
+        #[allow(unsafe_code)]
+        unsafe {
+            sky.rgb_batch_avx2(dirs, out);
+        }
+        return;
+    }
+    fastest(
+        #[inline(always)]
+        || sky.rgb_batch(dirs, out),
+    );
+}
+
+/// Whether this CPU has AVX2 and FMA (the features of [`NeuralSky::rgb_batch_avx2`]).
+#[must_use]
+pub fn has_avx2_fma() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    return std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma");
+    #[cfg(not(target_arch = "x86_64"))]
+    false
 }
 
 /// The instruction set [`fastest`] uses on this CPU.

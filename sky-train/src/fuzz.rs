@@ -80,12 +80,12 @@ fn check(bytes: &[u8]) -> Result<bool> {
         }
         let (z0, z1) = w.sun_zenith_range;
         let (t0, t1) = w.turbidity_range;
-        if let Ok(sun) = Sun::new(0.5 * (z0 + z1), 1.0) {
-            if let Ok(sky) = NeuralSky::new(&w, sun, 0.5 * (t0 + t1)) {
-                let rgb = sky.rgb(Vec3::new(0.3, 0.2, 0.9));
-                if !(rgb.is_finite() && rgb.min_element() >= 0.0) {
-                    bail!("accepted weights give radiance {rgb}");
-                }
+        if let Ok(sun) = Sun::new(0.5 * (z0 + z1), 1.0)
+            && let Ok(sky) = NeuralSky::new(&w, sun, 0.5 * (t0 + t1))
+        {
+            let rgb = sky.rgb(Vec3::new(0.3, 0.2, 0.9));
+            if !(rgb.is_finite() && rgb.min_element() >= 0.0) {
+                bail!("accepted weights give radiance {rgb}");
             }
         }
         Ok(true)

@@ -169,10 +169,11 @@ impl LogChart {
 }
 
 fn put(img: &mut RgbImage, x: i64, y: i64, c: Vec3) {
-    if let (Ok(x), Ok(y)) = (usize::try_from(x), usize::try_from(y)) {
-        if x < img.width && y < img.height {
-            img.pixels[y * img.width + x] = c;
-        }
+    if let (Ok(x), Ok(y)) = (usize::try_from(x), usize::try_from(y))
+        && x < img.width
+        && y < img.height
+    {
+        img.pixels[y * img.width + x] = c;
     }
 }
 

@@ -200,16 +200,16 @@ impl SkySource for StudySky {
     }
 
     fn rgb_batch(&self, dirs: &[Vec3], out: &mut [Vec3]) {
-        dispatch::fastest(
-            #[inline(always)]
-            || match self {
-                Self::H6(s) => s.rgb_batch(dirs, out),
-                Self::H12(s) => s.rgb_batch(dirs, out),
-                Self::H24(s) => s.rgb_batch(dirs, out),
-                Self::H48(s) => s.rgb_batch(dirs, out),
-                Self::TwoLayer(s) => s.rgb_batch(dirs, out),
-            },
-        );
+        match self {
+            Self::H6(s) => dispatch::neural_batch(s, dirs, out),
+            Self::H12(s) => dispatch::neural_batch(s, dirs, out),
+            Self::H24(s) => dispatch::neural_batch(s, dirs, out),
+            Self::H48(s) => dispatch::neural_batch(s, dirs, out),
+            Self::TwoLayer(s) => dispatch::fastest(
+                #[inline(always)]
+                || s.rgb_batch(dirs, out),
+            ),
+        }
     }
 }
 

@@ -447,12 +447,11 @@ proptest! {
         bands in 0usize..20,
         d in proptest::array::uniform3(proptest::num::f32::ANY),
     ) {
-        if let Ok(sun) = Sun::new(theta, 0.0) {
-            if let Ok(sky) = ShSky::new(sun, tau, bands) {
+        if let Ok(sun) = Sun::new(theta, 0.0)
+            && let Ok(sky) = ShSky::new(sun, tau, bands) {
                 let v = Vec3::from_array(d);
                 prop_assert!(sky.radiance(v).is_finite() && sky.irradiance(v).is_finite());
             }
-        }
     }
 }
 

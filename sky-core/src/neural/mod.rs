@@ -29,6 +29,8 @@
 //! sky (turbidity 2-6) and the Hosek-Wilkie sky (turbidity 1-10, ground albedo 0.5); their
 //! accuracy on the paper's test protocol is in each constant's docs.
 
+#[cfg(target_arch = "x86_64")]
+pub mod avx2;
 pub mod fixed;
 pub mod pretrained;
 pub mod weights;
@@ -192,6 +194,9 @@ impl<const H: usize> NeuralSky<H> {
     /// so that the CPU overlaps their square roots and divisions; in WebAssembly sixteen (four
     /// SIMD registers), one direction's chain after another, the order WebAssembly engines run
     /// fastest. Both orders give the same results.
+    ///
+    /// On x86-64 CPUs with AVX2 and FMA, [`rgb_batch_avx2`](Self::rgb_batch_avx2) is about 30 %
+    /// faster than this function compiled for AVX2, with the same accuracy but not the same bits.
     #[inline(always)]
     pub fn rgb_batch(&self, dirs: &[Vec3], out: &mut [Vec3]) {
         const LANES: usize = if STEP_BY_STEP { 32 } else { 16 };

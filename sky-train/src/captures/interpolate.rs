@@ -170,7 +170,7 @@ pub fn write_steps(
     out: &Path,
     progress: bool,
 ) -> Result<Vec<PathBuf>> {
-    if width < 16 || width % 2 != 0 {
+    if width < 16 || !width.is_multiple_of(2) {
         bail!("--width {width}: expected an even number of pixels, at least 16");
     }
     // Every sun is checked before the first file is written.

@@ -187,7 +187,7 @@ impl Skyline {
 /// # Errors
 /// When a parameter is out of range or a file cannot be written.
 pub fn synthesize(config: &SynthConfig, out: &Path, progress: bool) -> Result<Vec<SynthFrame>> {
-    if config.width < 16 || config.width % 2 != 0 || config.width > 16384 {
+    if config.width < 16 || !config.width.is_multiple_of(2) || config.width > 16384 {
         bail!(
             "--width {}: expected an even number of pixels in [16, 16384]",
             config.width

@@ -47,9 +47,6 @@ impl SkySource for Neural {
     }
 
     fn rgb_batch(&self, dirs: &[Vec3], out: &mut [Vec3]) {
-        dispatch::fastest(
-            #[inline(always)]
-            || self.sky.rgb_batch(dirs, out),
-        );
+        dispatch::neural_batch(&self.sky, dirs, out);
     }
 }

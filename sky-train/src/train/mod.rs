@@ -512,10 +512,10 @@ pub fn train<V: Validation + ?Sized>(
             milestone: None,
         };
         let v = validation.mean_nrmse(&current);
-        if let Some(m) = config.milestone.as_ref().filter(|_| milestone.is_none()) {
-            if current.mean_nrmse(&m.images) <= m.nrmse {
-                milestone = Some((start.elapsed().as_secs_f64(), iteration + 1));
-            }
+        if let Some(m) = config.milestone.as_ref().filter(|_| milestone.is_none())
+            && current.mean_nrmse(&m.images) <= m.nrmse
+        {
+            milestone = Some((start.elapsed().as_secs_f64(), iteration + 1));
         }
         if v < best.validation_nrmse {
             best = Trained {
