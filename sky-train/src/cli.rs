@@ -163,6 +163,9 @@ pub struct SizeStudyArgs {
     /// Hidden layouts to train, e.g. `6 12 24 48 12,12` (each one of those).
     #[arg(long, num_args = 1.., value_delimiter = ' ', default_values = ["6", "12", "24", "48", "12,12"])]
     pub layouts: Vec<String>,
+    /// LM weight of each sky's irradiance residual (0 to 100; 0 = NRMSE only), as for `train`.
+    #[arg(long, default_value_t = 1.0, value_parser = irradiance_weight)]
+    pub irradiance_weight: f64,
 }
 
 /// `fuzz-weights`' arguments.
@@ -611,7 +614,14 @@ pub fn execute(command: Command, input: &mut dyn BufRead, output: &mut dyn Write
                         })
                 })
                 .collect::<Result<Vec<_>>>()?;
-            let rows = crate::study::run(args.model, &layouts, args.seconds, args.seed, true)?;
+            let rows = crate::study::run(
+                args.model,
+                &layouts,
+                args.seconds,
+                args.seed,
+                args.irradiance_weight,
+                true,
+            )?;
             write!(output, "{}", crate::study::table(args.model, &rows))?;
             Ok(())
         }

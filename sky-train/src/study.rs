@@ -42,7 +42,7 @@ pub struct Row {
 }
 
 /// Trains one network per entry of `layouts` on `model` (the defaults of
-/// [`TrainConfig::new`], at most `seconds` each) and measures it.
+/// [`TrainConfig::new`] with `irradiance_weight`, at most `seconds` each) and measures it.
 ///
 /// # Errors
 /// For a layout the study cannot evaluate (one hidden layer of 6, 12, 24 or 48 neurons, or two
@@ -52,6 +52,7 @@ pub fn run(
     layouts: &[Vec<usize>],
     seconds: f64,
     seed: u64,
+    irradiance_weight: f64,
     progress: bool,
 ) -> Result<Vec<Row>> {
     for hidden in layouts {
@@ -64,6 +65,7 @@ pub fn run(
     config.max_iterations = 100_000;
     config.seed = seed;
     config.sampling.seed = seed;
+    config.irradiance_weight = irradiance_weight;
     config.progress = progress;
     let set = train::dataset::DataSet::training(model, &config.sampling)?;
     let validation = train::validation_set(model)?;

@@ -79,12 +79,14 @@ impl<const H: usize> NeuralSky<H> {
         for (d, o) in d_steps.iter().zip(o_steps) {
             self.step_avx2(d, o);
         }
-        // The last directions, padded to a whole step with the zenith.
-        let mut d = [Vec3::Z; STEP];
-        let mut o = [Vec3::ZERO; STEP];
-        d[..d_rest.len()].copy_from_slice(d_rest);
-        self.step_avx2(&d, &mut o);
-        o_rest.copy_from_slice(&o[..o_rest.len()]);
+        if !d_rest.is_empty() {
+            // The last directions, padded to a whole step with the zenith.
+            let mut d = [Vec3::Z; STEP];
+            let mut o = [Vec3::ZERO; STEP];
+            d[..d_rest.len()].copy_from_slice(d_rest);
+            self.step_avx2(&d, &mut o);
+            o_rest.copy_from_slice(&o[..o_rest.len()]);
+        }
     }
 
     /// Eqs. 4-7 for one step of directions.
