@@ -48,7 +48,7 @@ for target in "${targets[@]}"; do target_args+=(--target "$target"); done
 # Each run: target, board (qemu machine and CPU), binary. The target picks the board's memory
 # map in firmware/build.rs; every binary checks its values against the host's and exits 0 or 1.
 # A fourth field names firmware features: the micromath build goes to its own target folder,
-# for its size next to the default one (README, "Without an FPU").
+# for its size next to the default one (docs/firmware.md, "Flash and RAM").
 runs=(
   "thumbv7em-none-eabihf mps2-an386 cortex-m4 sky-firmware"            # Preetham and neural, f32
   "thumbv7em-none-eabihf mps2-an386 cortex-m4 sky-firmware micromath"  # the same, micromath

@@ -3,7 +3,8 @@
 #   host:  fmt, clippy (-D warnings), rustdoc (-D warnings), all workspace tests and doctests
 #          (among them sky-train/tests/module_graph.rs: sky-train's modules import without cycles),
 #          the micromath accuracy test with sky-core's `micromath` feature on,
-#          20 s of fuzzing the neural weight-file decoder
+#          20 s of fuzzing the neural weight-file decoder, the sh blocks of README.md and docs/
+#          (scripts/doc-blocks.sh; their Rust blocks are doctests of tests/src/lib.rs)
 #   cross: sky-core for thumbv7em / riscv32imac / wasm32 without std or alloc, and the firmware
 #          examples under qemu (Cortex-M4F; fixed point on Cortex-M3 and M0) checked against
 #          host-computed values
@@ -36,6 +37,9 @@ cargo test --locked -p sky-tests --features micromath --test micromath
 
 step "fuzz the weight-file decoder (bounded time)"
 cargo run --release --locked -q -p sky-train -- fuzz-weights --seconds 20
+
+step "the sh and toml blocks of README.md and docs/ run as written"
+scripts/doc-blocks.sh
 
 step "cross targets and firmware under qemu"
 scripts/cross.sh

@@ -286,7 +286,7 @@ impl Sky {
     }
 }
 
-/// The AOAS style presets' names, in the order of the README's strip.
+/// The AOAS style presets' names, in the order of the gallery's strip (`sky-train gallery`, docs/aoas_presets.png).
 #[wasm_bindgen(js_name = aoasPresets)]
 #[must_use]
 pub fn aoas_presets() -> Vec<String> {

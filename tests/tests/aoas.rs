@@ -159,7 +159,7 @@ fn f32_evaluation_matches_o_neil_in_f64() {
 /// The error of the physical sky against the exact integral, per sample count: the largest and
 /// the RMS relative error in luminance and the largest chromaticity difference, over the upper
 /// hemisphere (zenith 0-89.5°), for sun zenith angles 0-85°. The bounds are the measured values
-/// rounded up (README, "Measured"); past 16 samples the error is the optical-depth fit's.
+/// rounded up (docs/accuracy.md); past 16 samples the error is the optical-depth fit's.
 #[test]
 fn error_against_the_exact_integral_per_sample_count() {
     // (samples, bound on the largest luminance error, on the RMS, on the largest Δxy)

@@ -228,7 +228,7 @@ const BLUE: Vec3 = Vec3::new(2.0, 7.0, 30.0);
 const CORAL: Vec3 = Vec3::new(22.0, 7.5, 4.5);
 
 impl Preset {
-    /// Every preset, in the order of the README's strip.
+    /// Every preset, in the order of the gallery's strip (`sky-train gallery`, docs/aoas_presets.png).
     pub const ALL: [Self; 11] = [
         Self::Physical,
         Self::Sunrise,
