@@ -45,6 +45,10 @@ for target in "${targets[@]}"; do target_args+=(--target "$target"); done
 (cd "$root" && cargo build -p sky-core --lib --release "${target_args[@]}" \
   --config "$cross_config" --target-dir "$target_dir")
 
+step "sky-core: build with the defmt feature for thumbv7em-none-eabihf"
+(cd "$root" && cargo build -p sky-core --lib --release --features defmt \
+  --target thumbv7em-none-eabihf --config "$cross_config" --target-dir "$target_dir")
+
 # Each run: target, board (qemu machine and CPU), binary. The target picks the board's memory
 # map in firmware/build.rs; every binary checks its values against the host's and exits 0 or 1.
 # A fourth field names firmware features: the micromath build goes to its own target folder,

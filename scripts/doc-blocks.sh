@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs every `sh` code block of README.md and docs/*.md as written, from the repository root
+# Runs every `sh` code block of README.md, docs/*.md and the crates' READMEs as written, from the repository root
 # (their output files go to out/, which git ignores), each with `set -euo pipefail`. A block
 # preceded by a `<!-- slow: … -->` line is not run: the script lists it with that line, which
 # says how the block is checked instead. Every `toml` block that names sky-core must require its
@@ -13,7 +13,7 @@ trap 'rm -rf "$work"' EXIT
 
 version=$(sed -n '/^\[workspace.package\]/,/^\[/s/^version = "\(.*\)"/\1/p' Cargo.toml)
 ran=0 skipped=0
-for page in README.md docs/*.md; do
+for page in README.md docs/*.md sky-core/README.md sky-train/README.md; do
   # Split the page into one file per block: NNN.LANG (the block), NNN.where (line, slow reason).
   rm -f "$work"/[0-9]*
   awk -v dir="$work" '

@@ -35,6 +35,14 @@ cargo test --workspace --locked
 step "sky-core's micromath feature: each model's error against its f64 reference"
 cargo test --locked -p sky-tests --features micromath --test micromath
 
+step "sky-core's examples run"
+for example in preetham controller; do
+  cargo run --locked -q -p sky-core --example "$example" >/dev/null
+done
+
+step "cargo publish --dry-run: sky-core and sky-train package and build from their packaged sources"
+cargo publish --workspace --dry-run --locked --allow-dirty
+
 step "fuzz the weight-file decoder (bounded time)"
 cargo run --release --locked -q -p sky-train -- fuzz-weights --seconds 20
 

@@ -97,6 +97,10 @@
 //!   channel (libm: 4.3e-6), neural 1.7e-2 (libm: 8.2e-4), AOAS 1.1e-2 more than 10° from the
 //!   sun but up to 0.53 within 2-10° of it (libm: 1.2e-4), held by `tests/tests/micromath.rs`.
 //!   Per-direction code is the same in both builds.
+//! * **`defmt`** (off by default): `defmt::Format` for the public errors, parameters and
+//!   results ([`SkyError`], [`Sun`], [`color::Xyy`], [`cct::Cct`], [`solar::UtcTime`],
+//!   [`solar::Site`], …), for firmware that logs with `defmt`; not for the sky states, which
+//!   hold glam vectors. Additive: it changes no value.
 //!
 //! Parts without an FPU evaluate the neural sky in integers with
 //! [`neural::FixedNeuralSky`] (the firmware checks it on a Cortex-M3 and a Cortex-M0).

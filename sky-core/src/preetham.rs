@@ -31,6 +31,7 @@ const HORIZON_TOLERANCE: f32 = 1e-6;
 
 /// The five Perez coefficients A-E of one channel (seed 002, eq. 10).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct PerezCoefficients {
     /// Darkening or brightening of the horizon.
     pub a: f32,

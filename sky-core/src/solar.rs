@@ -26,6 +26,7 @@ use crate::geom::Sun;
 
 /// A UTC instant in the proleptic Gregorian calendar, validated.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct UtcTime {
     year: i32,
     month: u32,
@@ -152,6 +153,7 @@ impl UtcTime {
 
 /// A place on the Earth: geodetic latitude and longitude in degrees, elevation in metres.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Site {
     latitude: f64,
     longitude: f64,

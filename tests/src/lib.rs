@@ -28,4 +28,8 @@ pub mod pages {
     pub mod testing {}
     #[doc = include_str!("../../docs/training.md")]
     pub mod training {}
+    #[doc = include_str!("../../sky-core/README.md")]
+    pub mod sky_core_readme {}
+    #[doc = include_str!("../../sky-train/README.md")]
+    pub mod sky_train_readme {}
 }

@@ -31,6 +31,7 @@ const C2_UM_K: f64 = 14_388.0;
 
 /// A correlated colour temperature and the signed distance from the Planckian locus.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Cct {
     /// Correlated colour temperature in kelvin.
     pub kelvin: f32,
