@@ -79,7 +79,7 @@ pub const MAX_WAVELENGTH: f32 = 0.78;
 
 /// Views down to this far below the viewer's horizon (in cos θ) still count as on it, as in the
 /// Preetham sky: the f32 nearest π/2 lies 4.4e-8 rad past it.
-const HORIZON_TOLERANCE: f32 = 1e-6;
+pub const HORIZON_TOLERANCE: f32 = 1e-6;
 
 /// Directions evaluated together by the batch path: the lanes of its loops.
 const CHUNK: usize = 32;
@@ -201,13 +201,50 @@ impl Scattering {
 /// makes light from below the horizon vanish and stays finite.
 #[inline(always)]
 fn scale_log2(cos: f32) -> f32 {
-    const C0: f32 = -0.00287 * LOG2_E;
-    const C1: f32 = 0.459 * LOG2_E;
-    const C2: f32 = 3.83 * LOG2_E;
-    const C3: f32 = -6.80 * LOG2_E;
-    const C4: f32 = 5.25 * LOG2_E;
+    let [c0, c1, c2, c3, c4] = SCALE_FIT_LOG2;
     let x = 1.0 - cos;
-    C0 + x * (C1 + x * (C2 + x * (C3 + x * C4)))
+    c0 + x * (c1 + x * (c2 + x * (c3 + x * c4)))
+}
+
+/// The coefficients of O'Neil's optical-depth fit in log₂ units, lowest power first: the
+/// polynomial in x = 1 − cos θ that `scale_log2` evaluates (O'Neil's −0.00287, 0.459, 3.83,
+/// −6.80, 5.25, each times log₂e).
+pub const SCALE_FIT_LOG2: [f32; 5] = [
+    -0.00287 * LOG2_E,
+    0.459 * LOG2_E,
+    3.83 * LOG2_E,
+    -6.80 * LOG2_E,
+    5.25 * LOG2_E,
+];
+
+/// What [`AoasSky`]'s ray march reads ([`AoasSky::kernel_constants`]); lengths in atmosphere
+/// thicknesses, the planet's radius being [`PLANET_RADIUS`] and the scale depth [`SCALE_DEPTH`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KernelConstants {
+    /// Unit apex direction of the viewer (eq. 2).
+    pub apex: Vec3,
+    /// Unit direction towards the sun.
+    pub sun: Vec3,
+    /// The viewer's distance from the planet's centre, R + h.
+    pub camera_radius: f32,
+    /// (R + h)² − R².
+    pub camera_lift: f32,
+    /// (R + 1)² − (R + h)².
+    pub far_lift: f32,
+    /// log₂ of the density at the viewer.
+    pub camera_density_log2: f32,
+    /// sun · apex.
+    pub sun_apex: f32,
+    /// 4π (Kr K_c + Km) log₂e per channel: the extinction in log₂ units.
+    pub extinction_log2: [f32; 3],
+    /// ESun Kr K_c per channel.
+    pub rayleigh: [f32; 3],
+    /// ESun Km.
+    pub mie: f32,
+    /// 1.5 (1 − g²)/(2 + g²), (1 − g)², 2g, (1 − |g|)²: the Mie phase function's constants.
+    pub mie_phase: [f32; 4],
+    /// Ray-marching samples.
+    pub samples: u32,
 }
 
 /// The geometry and start of one view ray, shared by the one-direction and batch paths.
@@ -341,6 +378,36 @@ impl AoasSky {
     #[must_use]
     pub fn style(&self) -> &Style {
         &self.style
+    }
+
+    /// The constants of the ray march, exactly as [`rgb`](Self::rgb) uses them: for GPU shaders
+    /// (sky-gpu) that take these values as uniforms. They cover the physical sky and the sky
+    /// hue and day cycle of any style; the pattern principles (cloud noise and shapes) and
+    /// ambiguity are not among them (see [`has_pattern_or_ambiguity`](Self::has_pattern_or_ambiguity)).
+    #[must_use]
+    pub fn kernel_constants(&self) -> KernelConstants {
+        KernelConstants {
+            apex: self.apex,
+            sun: self.sun.direction(),
+            camera_radius: self.camera_radius,
+            camera_lift: self.camera_lift,
+            far_lift: self.far_lift,
+            camera_density_log2: self.camera_density_log2,
+            sun_apex: self.sun_apex,
+            extinction_log2: self.extinction_log2,
+            rayleigh: self.rayleigh,
+            mie: self.mie,
+            mie_phase: self.mie_phase,
+            samples: self.samples,
+        }
+    }
+
+    /// Whether the style has a principle beyond the scattering, sky hue and day cycle: cloud
+    /// noise, cloud shapes or ambiguity ([`kernel_constants`](Self::kernel_constants) leaves
+    /// them out).
+    #[must_use]
+    pub fn has_pattern_or_ambiguity(&self) -> bool {
+        self.has_pattern() || self.style.ambiguity.is_some()
     }
 
     /// The sun of the style's day cycle.
