@@ -26,6 +26,8 @@ vec3 sky_radiance(vec3 dir) {
     vec3 v = lifted * inversesqrt(dot(lifted, lifted));
     float mu = clamp(dot(v, sky_aoas[0].xyz), 0.0, 1.0);
     float nu = clamp(dot(v, sky_aoas[1].xyz), (-1.0), 1.0);
+    vec3 vs = v - sky_aoas[1].xyz;
+    float one_minus_nu = 0.5 * dot(vs, vs);
     float b = sky_aoas[0].w * mu;
     float far_len = sky_aoas[2].y / (b + sqrt(b * b + sky_aoas[2].y));
     int samples = int(sky_aoas[2].w);
@@ -48,7 +50,7 @@ vec3 sky_radiance(vec3 dir) {
         acc += exp2(density_log2 - scatter * sky_aoas[3].xyz);
     }
     float one_plus_cos2 = 1.0 + nu * nu;
-    float q = max(sky_aoas[5].y + sky_aoas[5].z * (1.0 - nu), sky_aoas[5].w);
+    float q = max(sky_aoas[5].y + sky_aoas[5].z * one_minus_nu, sky_aoas[5].w);
     float rq = inversesqrt(q);
     float mie_phase = sky_aoas[5].x * one_plus_cos2 * (rq * rq * rq);
     float w = step_len * above;

@@ -26,6 +26,8 @@ fn sky_radiance(dir: vec3<f32>) -> vec3<f32> {
     let v: vec3<f32> = lifted * inverseSqrt(dot(lifted, lifted));
     let mu: f32 = clamp(dot(v, sky_aoas[0].xyz), 0.0, 1.0);
     let nu: f32 = clamp(dot(v, sky_aoas[1].xyz), (-1.0), 1.0);
+    let vs: vec3<f32> = v - sky_aoas[1].xyz;
+    let one_minus_nu: f32 = 0.5 * dot(vs, vs);
     let b: f32 = sky_aoas[0].w * mu;
     let far_len: f32 = sky_aoas[2].y / (b + sqrt(b * b + sky_aoas[2].y));
     let samples: i32 = i32(sky_aoas[2].w);
@@ -48,7 +50,7 @@ fn sky_radiance(dir: vec3<f32>) -> vec3<f32> {
         acc += exp2(density_log2 - scatter * sky_aoas[3].xyz);
     }
     let one_plus_cos2: f32 = 1.0 + nu * nu;
-    let q: f32 = max(sky_aoas[5].y + sky_aoas[5].z * (1.0 - nu), sky_aoas[5].w);
+    let q: f32 = max(sky_aoas[5].y + sky_aoas[5].z * one_minus_nu, sky_aoas[5].w);
     let rq: f32 = inverseSqrt(q);
     let mie_phase: f32 = sky_aoas[5].x * one_plus_cos2 * (rq * rq * rq);
     let w: f32 = step_len * above;

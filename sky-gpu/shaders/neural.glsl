@@ -22,5 +22,5 @@ vec3 sky_radiance(vec3 dir) {
         float a = 1.0 / (1.0 + h * h);
         z += o.xyz * a;
     }
-    return min(sky_neural[2].xyz * (z * z), vec3(3.4028235e38));
+    return min(sky_neural[2].xyz * (z * z), vec3(3.4028234663852886e38));
 }

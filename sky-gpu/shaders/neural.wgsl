@@ -22,5 +22,5 @@ fn sky_radiance(dir: vec3<f32>) -> vec3<f32> {
         let a: f32 = 1.0 / (1.0 + h * h);
         z += o.xyz * a;
     }
-    return min(sky_neural[2].xyz * (z * z), vec3<f32>(3.4028235e38));
+    return min(sky_neural[2].xyz * (z * z), vec3<f32>(3.4028234663852886e38));
 }

@@ -46,9 +46,16 @@ impl Language {
 
 /// A float literal that reads back as the same f32 in both languages: the shortest decimal
 /// that round-trips (always with a point or an exponent, so never an integer), negative ones
-/// parenthesised.
+/// parenthesised. WGSL reads a literal as an abstract float first and refuses one beyond
+/// f32's range, so where the shortest decimal lies beyond it (`3.4028235e38` for `f32::MAX`)
+/// the f32's exact value is written instead.
 pub(crate) fn float_literal(v: f32) -> String {
-    let s = format!("{v:?}");
+    let mut s = format!("{v:?}");
+    if s.parse::<f64>()
+        .is_ok_and(|x| x.abs() > f64::from(f32::MAX))
+    {
+        s = format!("{:?}", f64::from(v));
+    }
     if v.is_sign_negative() {
         format!("({s})")
     } else {
@@ -214,5 +221,36 @@ impl Printer {
             self.stmt(1, s);
         }
         self.line(0, "}");
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::float_literal;
+
+    #[test]
+    fn literals_read_back_as_the_same_f32_within_its_range() {
+        for v in [
+            0.1f32,
+            1.0,
+            -2.5,
+            1e-6,
+            3.240_625_5,
+            f32::MAX,
+            -f32::MAX,
+            f32::MIN_POSITIVE,
+        ] {
+            let s = float_literal(v);
+            let x: f64 = s
+                .trim_matches(|c| c == '(' || c == ')')
+                .parse()
+                .expect("decimal");
+            assert!(x.abs() <= f64::from(f32::MAX), "{s}");
+            #[allow(clippy::cast_possible_truncation)]
+            let back = x as f32;
+            assert_eq!(back, v, "{s}");
+            assert!(s.contains(['.', 'e']), "{s} is not an integer literal");
+        }
+        assert_eq!(float_literal(f32::MAX), "3.4028234663852886e38");
     }
 }

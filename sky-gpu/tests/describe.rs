@@ -309,9 +309,7 @@ fn each_description_evaluates_to_sky_cores_values() {
             Ok(params) => {
                 let e = worst(&Model::Aoas.shader(), &params, |d| a.rgb(d));
                 println!("aoas {}: {e:.2e}", preset.name());
-                // Largest at the sun, where the Mie peak (g = 0.99) turns the last bit of the
-                // view direction (inverseSqrt here, sky-core's polynomial 1/√x there) into 1e-4.
-                assert!(e < 5e-4, "aoas {} {e}", preset.name());
+                assert!(e < 2e-5, "aoas {} {e}", preset.name());
             }
             Err(_) => assert!(a.has_pattern_or_ambiguity(), "{}", preset.name()),
         }

@@ -97,8 +97,19 @@ pub fn shader() -> Shader {
         Ty::F32,
         call(
             Builtin::Clamp,
-            [call(Builtin::Dot, [v, sun]), float(-1.0), float(1.0)],
+            [
+                call(Builtin::Dot, [v.clone(), sun.clone()]),
+                float(-1.0),
+                float(1.0),
+            ],
         ),
+    );
+    // 1 − ν as |v − s|²/2, accurate near the sun (where the Mie peak amplifies 1 − ν's error).
+    let vs = b.let_("vs", Ty::Vec3, v - sun);
+    let one_minus_nu = b.let_(
+        "one_minus_nu",
+        Ty::F32,
+        0.5 * call(Builtin::Dot, [vs.clone(), vs]),
     );
     // Eq. 3's ray from Pv to the outer sphere, without cancellation.
     let bb = b.let_("b", Ty::F32, camera_radius.clone() * mu.clone());
@@ -182,7 +193,10 @@ pub fn shader() -> Shader {
         Ty::F32,
         call(
             Builtin::Max,
-            [mie_phase("y") + mie_phase("z") * (1.0 - nu), mie_phase("w")],
+            [
+                mie_phase("y") + mie_phase("z") * one_minus_nu,
+                mie_phase("w"),
+            ],
         ),
     );
     let rq = b.let_("rq", Ty::F32, call(Builtin::InverseSqrt, [q]));
