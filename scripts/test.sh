@@ -9,8 +9,9 @@
 #          examples under qemu (Cortex-M4F; fixed point on Cortex-M3 and M0) checked against
 #          host-computed values
 #   wasm:  sky-wasm built for wasm32, its wasm-bindgen tests in node (parity with native sky-core,
-#          errors, images), node tests of its JavaScript surface and the demo's browser tests in
-#          Debian's chromium (scripts/wasm.sh test)
+#          errors, images), node tests of its JavaScript surface, the demos' browser tests and
+#          every GPU shader against sky-core (WebGL2 and WebGPU on SwiftShader) in Debian's
+#          chromium, and the npm tarball installed into a scratch project (scripts/wasm.sh test)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"

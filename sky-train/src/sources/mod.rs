@@ -39,6 +39,12 @@ pub trait SkySource: Send + Sync {
             *o = color::xyz_to_xyy(color::linear_srgb_to_xyz(c));
         }
     }
+
+    /// The sky's GPU shader model and its parameters packed as that shader reads them
+    /// (sky-gpu); `None` for models without a shader.
+    fn shader_params(&self) -> Option<Result<(sky_gpu::Model, Vec<f32>), sky_gpu::UnsupportedSky>> {
+        None
+    }
 }
 
 /// The models the command line can name with `--model`.
