@@ -291,6 +291,7 @@ fn controller_expected_table() -> Result<String, Box<dyn Error>> {
             CONTROLLER_TURBIDITY,
             CONTROLLER_FULL_SCALE_LUX,
             &lamp,
+            None,
         )?;
         let pwm = s.drive.quantise(CONTROLLER_PWM_BITS)?;
         writeln!(

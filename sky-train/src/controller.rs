@@ -82,7 +82,7 @@ pub fn schedule(config: &ScheduleConfig, output: &mut dyn Write) -> Result<()> {
         let (hour, min) = (minute / 60, minute % 60);
         let time = UtcTime::new(year, month, day, hour, min, 0.0)
             .map_err(|e| ParamError(format!("--date: {e}")))?;
-        let s = step(&time, &site, config.turbidity, config.full_scale_lux, &lamp).with_context(
+        let s = step(&time, &site, config.turbidity, config.full_scale_lux, &lamp, None).with_context(
             || format!("schedule at {year:04}-{month:02}-{day:02}T{hour:02}:{min:02} (--turbidity, --full-scale-lux)"),
         )?;
         let (sun, c, e, levels) = (s.sun, s.cct, s.illuminance, s.drive.levels);

@@ -83,7 +83,7 @@ fn run() -> Result<usize, SkyError> {
     for want in &STEPS {
         let (hour, minute) = (want.minute / 60, want.minute % 60);
         let time = UtcTime::new(year, month, day, hour, minute, 0.0)?;
-        let got = step(&time, &site, TURBIDITY, FULL_SCALE_LUX, &lamp)?;
+        let got = step(&time, &site, TURBIDITY, FULL_SCALE_LUX, &lamp, None)?;
         let pwm = got.drive.quantise(PWM_BITS)?;
         let differ = differences(&got, pwm, want);
         hprintln!(
