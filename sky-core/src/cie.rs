@@ -30,16 +30,16 @@ use crate::photometry::{self, Photometry};
 /// (eSim 2002), whose groups I-VI and 1-6 give the same rows, and against the table of the Lighting
 /// Toolbox's `ciesky.m` (F. Rudawski, 2021).
 pub const STANDARD_SKIES: [[f32; 5]; 15] = [
-    [4.0, -0.70, 0.0, -1.0, 0.00],   // 1: CIE standard overcast, steep gradation, uniform in azimuth
-    [4.0, -0.70, 2.0, -1.5, 0.15],   // 2: overcast, steep gradation, slight brightening towards the sun
-    [1.1, -0.80, 0.0, -1.0, 0.00],   // 3: overcast, moderate gradation, uniform in azimuth
-    [1.1, -0.80, 2.0, -1.5, 0.15],   // 4: overcast, moderate gradation, slight brightening towards the sun
-    [0.0, -1.00, 0.0, -1.0, 0.00],   // 5: sky of uniform luminance
-    [0.0, -1.00, 2.0, -1.5, 0.15],   // 6: partly cloudy, no gradation, slight brightening towards the sun
-    [0.0, -1.00, 5.0, -2.5, 0.30],   // 7: partly cloudy, no gradation, brighter circumsolar region
-    [0.0, -1.00, 10.0, -3.0, 0.45],  // 8: partly cloudy, no gradation, distinct solar corona
-    [-1.0, -0.55, 2.0, -1.5, 0.15],  // 9: partly cloudy, the sun obscured
-    [-1.0, -0.55, 5.0, -2.5, 0.30],  // 10: partly cloudy, brighter circumsolar region
+    [4.0, -0.70, 0.0, -1.0, 0.00], // 1: CIE standard overcast, steep gradation, uniform in azimuth
+    [4.0, -0.70, 2.0, -1.5, 0.15], // 2: overcast, steep gradation, slight brightening towards the sun
+    [1.1, -0.80, 0.0, -1.0, 0.00], // 3: overcast, moderate gradation, uniform in azimuth
+    [1.1, -0.80, 2.0, -1.5, 0.15], // 4: overcast, moderate gradation, slight brightening towards the sun
+    [0.0, -1.00, 0.0, -1.0, 0.00], // 5: sky of uniform luminance
+    [0.0, -1.00, 2.0, -1.5, 0.15], // 6: partly cloudy, no gradation, slight brightening towards the sun
+    [0.0, -1.00, 5.0, -2.5, 0.30], // 7: partly cloudy, no gradation, brighter circumsolar region
+    [0.0, -1.00, 10.0, -3.0, 0.45], // 8: partly cloudy, no gradation, distinct solar corona
+    [-1.0, -0.55, 2.0, -1.5, 0.15], // 9: partly cloudy, the sun obscured
+    [-1.0, -0.55, 5.0, -2.5, 0.30], // 10: partly cloudy, brighter circumsolar region
     [-1.0, -0.55, 10.0, -3.0, 0.45], // 11: white-blue sky with a distinct solar corona
     [-1.0, -0.32, 10.0, -3.0, 0.45], // 12: CIE standard clear sky, low luminance turbidity
     [-1.0, -0.32, 16.0, -3.0, 0.30], // 13: CIE standard clear sky, polluted atmosphere
@@ -206,7 +206,8 @@ impl CieSky {
         let [a, b, c, d, e] = self.parameters;
         let chi = geom::angle_between(dir, self.sun.direction());
         let cos_chi = math::cos(chi);
-        let indicatrix = 1.0 + c * (math::exp(d * chi) - self.indicatrix_offset) + e * cos_chi * cos_chi;
+        let indicatrix =
+            1.0 + c * (math::exp(d * chi) - self.indicatrix_offset) + e * cos_chi * cos_chi;
         let gradation = 1.0 + a * math::exp(b / dir.z.max(MIN_COS_ZENITH));
         self.scale * indicatrix * gradation
     }
@@ -224,6 +225,12 @@ impl Photometry for CieSky {
 
     fn zenith_luminance(&self) -> f32 {
         self.zenith_luminance
+    }
+
+    fn horizontal_illuminance(&self) -> Vec3 {
+        let (x, y) = self.chromaticity;
+        let e = photometry::horizontal_integral(&|d| self.luminance(d), self.sun.direction());
+        color::xyy_to_xyz(Xyy { x, y, luminance: e })
     }
 }
 
@@ -252,7 +259,10 @@ mod tests {
         let ls: [f32; 4] = core::array::from_fn(|k| {
             overcast.luminance(geom::direction(z, f32::from(u8::try_from(k).unwrap_or(0))))
         });
-        assert!(ls.iter().all(|v| (v - ls[0]).abs() < 1e-3 * ls[0]), "{ls:?}");
+        assert!(
+            ls.iter().all(|v| (v - ls[0]).abs() < 1e-3 * ls[0]),
+            "{ls:?}"
+        );
         assert!((overcast.luminance(Vec3::Z) - 5_000.0).abs() < 0.1);
     }
 
@@ -261,7 +271,10 @@ mod tests {
         let sun = Sun::new(0.5, 0.0).expect("sun");
         assert!(matches!(
             CieSky::new(0, sun, 1.0),
-            Err(SkyError::OutOfRange { parameter: "CIE sky type", .. })
+            Err(SkyError::OutOfRange {
+                parameter: "CIE sky type",
+                ..
+            })
         ));
         assert!(CieSky::new(16, sun, 1.0).is_err());
         assert!(CieSky::new(3, sun, f32::NAN).is_err());
@@ -271,7 +284,13 @@ mod tests {
             CieSky::new(12, below, 1.0),
             Err(SkyError::SunBelowHorizon { .. })
         ));
-        assert_eq!(CieSky::new(12, sun, 1.0).expect("sky").luminance(-Vec3::Z), 0.0);
-        assert_eq!(CieSky::new(12, sun, 1.0).expect("sky").luminance(Vec3::NAN), 0.0);
+        assert_eq!(
+            CieSky::new(12, sun, 1.0).expect("sky").luminance(-Vec3::Z),
+            0.0
+        );
+        assert_eq!(
+            CieSky::new(12, sun, 1.0).expect("sky").luminance(Vec3::NAN),
+            0.0
+        );
     }
 }

@@ -17,8 +17,8 @@
 //! value by value against Radiance's `gendaymtx.c` (diffuse and direct) and the `cPerezSkyModel`
 //! class of the CitySim solver (all three): they agree everywhere.
 
-use crate::perez::SkyCondition;
 use crate::math;
+use crate::perez::SkyCondition;
 
 /// Rows a, b, c, d of one efficacy model for the eight sky-clearness bins.
 type EfficacyTable = [[f32; 4]; 8];

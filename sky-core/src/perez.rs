@@ -24,13 +24,17 @@
 //! **Documented clamps**, so that every accepted input gives a finite, non-negative sky:
 //!
 //! * Δ is clamped to [0.01, 0.6], the range of Perez's data (Radiance's gendaylit refuses values
-//!   outside it), and to at least 0.2 for 1.065 < ε < 2.8, the correction Radiance's gendaylit and
-//!   gendaymtx apply there (below it those bins' b turns positive and the horizon diverges);
-//! * b is clamped to at most 0, the model's assumption (seed 002 eq. 2): it is positive only
-//!   for ε bin 6 with Δ below 0.08 at a high sun and for bin 8 with Δ above 0.4, neither of
-//!   which Perez's data contains;
-//! * negative luminance (the fitted distribution dips below 0 in a few corners of the
-//!   parameter space) is clamped to 0, as gendaymtx does.
+//!   outside it); to at least 0.2 for 1.065 < ε < 2.8, the correction Radiance's gendaylit and
+//!   gendaymtx apply there (below it those bins' b turns positive and the horizon diverges); and,
+//!   extending that correction, to at least 0.08 in bin 6 (2.8 ≤ ε < 4.5), below which the
+//!   fitted gradation is negative over the whole sky with a high sun. With these the gradation
+//!   1 + a e^b is positive at the zenith for every bin, Δ and sun zenith (checked on a grid), so
+//!   the sky always has light to normalise;
+//! * b is clamped to at most 0, the model's assumption (seed 002 eq. 2): it is positive, and
+//!   the horizon's luminance would diverge, in bin 6 for Δ above about 0.38 with the sun near
+//!   the horizon and in bin 8 for Δ above 0.18 (sun on the horizon) to 0.42 (at the zenith);
+//! * negative luminance (the fitted indicatrix dips below 0 near the sun in bin 4 for large Δ,
+//!   for instance) is clamped to 0, as gendaymtx does.
 
 use core::f32::consts::FRAC_PI_2;
 
@@ -169,14 +173,19 @@ impl SkyCondition {
             f32::MIN_POSITIVE,
             f32::MAX,
         )?;
-        let direct = check_range("direct normal irradiance [W/m²]", direct_normal, 0.0, f32::MAX)?;
+        let direct = check_range(
+            "direct normal irradiance [W/m²]",
+            direct_normal,
+            0.0,
+            f32::MAX,
+        )?;
         let z = check_range("sun zenith [rad]", sun_zenith, 0.0, FRAC_PI_2)?;
         let kz3 = KAPPA * z * z * z;
         let epsilon = ((diffuse + direct) / diffuse + kz3) / (1.0 + kz3);
         let delta = diffuse * crate::solar::relative_air_mass(z)
             / crate::solar::extraterrestrial_irradiance(day_of_year);
         // Both are finite for finite inputs below f32::MAX / 36.5 or so; saturate otherwise.
-        Self::new(epsilon.min(f32::MAX).max(1.0), delta.min(f32::MAX))
+        Self::new(epsilon.clamp(1.0, f32::MAX), delta.min(f32::MAX))
     }
 
     /// The sky clearness ε.
@@ -218,6 +227,9 @@ pub fn all_weather_coefficients(condition: &SkyCondition, sun_zenith: f32) -> Pe
     if condition.epsilon > CLEARNESS_BIN_EDGES[0] && condition.epsilon < CLEARNESS_BIN_EDGES[4] {
         delta = delta.max(0.2);
     }
+    if bin == 6 {
+        delta = delta.max(0.08);
+    }
     let z = sun_zenith.clamp(0.0, FRAC_PI_2);
     let rows = &ALL_WEATHER[usize::from(bin - 1)];
     let linear = |r: &[f32; 4]| r[0] + r[1] * z + delta * (r[2] + r[3] * z);
@@ -247,7 +259,8 @@ pub fn all_weather_coefficients(condition: &SkyCondition, sun_zenith: f32) -> Pe
 /// **Below the horizon** (view z < 0) the luminance is 0. **Colour**: one chromaticity everywhere
 /// ([`D65`] unless set with [`with_chromaticity`](Self::with_chromaticity)). **Accuracy**: the
 /// relative distribution agrees with an f64 evaluation of the paper's formulas and table to
-/// 1e-4 relative; integrated over the hemisphere (brute force, f64) it reproduces the diffuse
+/// 1e-4 relative (of 1 % of the sky's brightest value, where the fitted function cancels to
+/// near 0); integrated over the hemisphere (brute force, f64) it reproduces the diffuse
 /// illuminance it was given within 1 % over every ε bin and Δ in range (tests in `tests/`).
 ///
 /// ```
@@ -413,7 +426,12 @@ mod tests {
             for delta in [0.0, 0.05, 0.3, 0.6, 5.0] {
                 let condition = SkyCondition::new(epsilon, delta).expect("valid");
                 let sky = PerezSky::new(sun, condition, 10_000.0).expect("sky");
-                for d in [Vec3::Z, Vec3::X, sun.direction(), Vec3::new(0.0, -1.0, 0.01)] {
+                for d in [
+                    Vec3::Z,
+                    Vec3::X,
+                    sun.direction(),
+                    Vec3::new(0.0, -1.0, 0.01),
+                ] {
                     let l = sky.luminance(d);
                     assert!(l.is_finite() && l >= 0.0, "{epsilon} {delta} {d}: {l}");
                 }

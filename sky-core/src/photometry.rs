@@ -54,7 +54,16 @@ const ZENITH_GRADING: i32 = 5;
 
 /// The azimuths (from the sun's, radians / π) of [`horizontal_integral`]'s panel edges, graded
 /// towards the sun.
-const AZIMUTH_EDGES: [f32; 8] = [0.0, 1.0 / 64.0, 1.0 / 32.0, 1.0 / 16.0, 0.125, 0.25, 0.5, 1.0];
+const AZIMUTH_EDGES: [f32; 8] = [
+    0.0,
+    1.0 / 64.0,
+    1.0 / 32.0,
+    1.0 / 16.0,
+    0.125,
+    0.25,
+    0.5,
+    1.0,
+];
 
 /// ∫ L(ω) cos θ dω over the upper hemisphere, for a luminance `luminance` symmetric about the
 /// vertical plane through `sun` (a unit vector; the skies of [`crate::cie`] and [`crate::perez`]):

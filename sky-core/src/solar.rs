@@ -375,7 +375,7 @@ pub fn extraterrestrial_irradiance(day_of_year: u32) -> f32 {
     let gamma = core::f32::consts::TAU * (day_of_year.saturating_sub(1) % 366) as f32 / 365.0;
     let (s1, c1) = (math::sin(gamma), math::cos(gamma));
     let (s2, c2) = (2.0 * s1 * c1, c1 * c1 - s1 * s1);
-    SOLAR_CONSTANT * (1.000_110 + 0.034_221 * c1 + 0.001_280 * s1 + 0.000_719 * c2 + 0.000_077 * s2)
+    SOLAR_CONSTANT * (1.000_11 + 0.034_221 * c1 + 0.001_280 * s1 + 0.000_719 * c2 + 0.000_077 * s2)
 }
 
 /// The relative optical air mass at sun zenith angle `zenith` (radians), by Kasten's formula
