@@ -4,7 +4,7 @@
 //!
 //! Without a measurement the sky is the clear sky of [`clear_sky_illuminance`]. With one (an
 //! outdoor lux sensor, a pyranometer, or a pyranometer pair giving the diffuse too; see
-//! [`Measurement`]) the illuminance is the measured global one and its colour is that of daylight
+//! [`Measurement`], [`crate::measurement`]) the illuminance is the measured global one and its colour is that of daylight
 //! under cloud ([`crate::overcast`]), from the clear-sky index (measured over clear-sky global
 //! illuminance); the sky type is the Perez sky-clearness bin ([`crate::perez`]), from the diffuse
 //! and direct parts of the measurement, split by Erbs's correlation when only the global is known
@@ -17,19 +17,15 @@
 
 use glam::Vec3;
 
-use core::f32::consts::FRAC_PI_2;
-
 use crate::cct::{self, Cct};
 use crate::color::{self, Xyy};
-use crate::decomposition::{self, MAX_BEAM_ZENITH, MAX_CLEARNESS_INDEX, MIN_COS_ZENITH};
-use crate::efficacy::{DEFAULT_PRECIPITABLE_WATER, Efficacy};
 use crate::error::SkyError;
 use crate::led::{Channel, Drive, Luminaire};
-use crate::math;
+pub use crate::measurement::Measurement;
 use crate::overcast;
 use crate::perez::SkyCondition;
 use crate::photometry::Photometry;
-use crate::solar::{self, Site, SunPosition, UtcTime};
+use crate::solar::{Site, SunPosition, UtcTime};
 use crate::twilight::Daylight;
 
 /// The example RGBW luminaire: typical LED chromaticities (CIE 1931 x, y) and outputs in lumens
@@ -46,30 +42,6 @@ pub fn example_luminaire() -> Result<Luminaire<4>, SkyError> {
         ch(0.135, 0.060, 100.0),
         ch(0.4369, 0.4041, 900.0),
     )
-}
-
-/// An outdoor measurement of daylight on a horizontal plane.
-///
-/// **Bad readings**: NaN or infinite values are [`SkyError::NotFinite`]; negative values (a
-/// sensor's dark offset) count as 0; a diffuse above the global is [`SkyError::OutOfRange`]
-/// naming the diffuse; a global above [`MAX_CLEARNESS_INDEX`] times the extraterrestrial
-/// horizontal irradiance (cos Z taken as at least [`MIN_COS_ZENITH`], so the bound stays above
-/// 130 W/m² or about 16 klx at night) is [`SkyError::OutOfRange`] naming the reading. With the sun
-/// below the horizon a reading is used as it is: there is no sky type, and W/m² become lux with
-/// the efficacy of the sun on the horizon.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Measurement {
-    /// Global horizontal illuminance from a lux sensor, lx.
-    GlobalIlluminance(f32),
-    /// Global horizontal irradiance from a pyranometer, W/m².
-    GlobalIrradiance(f32),
-    /// Global and diffuse horizontal irradiance (a pyranometer and a shaded one), W/m².
-    Irradiance {
-        /// Global horizontal irradiance, W/m².
-        global: f32,
-        /// Diffuse horizontal irradiance, W/m².
-        diffuse: f32,
-    },
 }
 
 /// What a measurement told the controller.
@@ -174,20 +146,20 @@ pub fn step(
     let (illuminance, weather) = match measurement {
         None => (clear, None),
         Some(m) => {
-            let reading = interpret(m, &sun, time.day_of_year())?;
+            let reading = m.read(sun.sun().zenith(), time.day_of_year())?;
             // The clear sky is positive at every elevation (twilight's night floor included).
-            let index = (reading.lux / clear.y.max(f32::MIN_POSITIVE)).min(f32::MAX);
+            let index = (reading.global_illuminance / clear.y.max(f32::MIN_POSITIVE)).min(f32::MAX);
             let w = overcast::overcast_fraction(index);
             let weather = Weather {
                 sky_type: reading.condition.map_or(0, |c| c.bin()),
                 condition: reading.condition,
-                global_irradiance: reading.global,
+                global_irradiance: reading.global_irradiance,
                 clear_sky: clear,
                 clear_sky_index: index,
                 overcast_fraction: w,
             };
             (
-                overcast::daylight_under_cloud(clear, w, reading.lux),
+                overcast::daylight_under_cloud(clear, w, reading.global_illuminance),
                 Some(weather),
             )
         }
@@ -206,115 +178,4 @@ pub fn step(
         drive,
         weather,
     })
-}
-
-/// A measurement in both units, with the sky condition when the sun is up.
-struct Reading {
-    lux: f32,
-    global: f32,
-    condition: Option<SkyCondition>,
-}
-
-/// Fixed-point iterations from a global illuminance to the irradiance whose Perez efficacy
-/// gives it back (an outdoor lux sensor alone; the efficacy depends on the sky it implies).
-const EFFICACY_ITERATIONS: usize = 8;
-
-/// A first guess of the global efficacy, lm/W.
-const FIRST_EFFICACY: f32 = 110.0;
-
-/// A finite reading, negative values counted as 0.
-fn non_negative(parameter: &'static str, value: f32) -> Result<f32, SkyError> {
-    if value.is_finite() {
-        Ok(value.max(0.0))
-    } else {
-        Err(SkyError::NotFinite { parameter })
-    }
-}
-
-/// The measurement `m` with the sun at `sun` on day `day` ([`Measurement`]'s rules).
-fn interpret(m: Measurement, sun: &SunPosition, day: u32) -> Result<Reading, SkyError> {
-    let zenith = sun.sun().zenith();
-    let up = zenith <= FRAC_PI_2;
-    let z = zenith.min(FRAC_PI_2);
-    let i0 = solar::extraterrestrial_irradiance(day);
-    let limit = MAX_CLEARNESS_INDEX * i0 * math::cos(z).max(MIN_COS_ZENITH);
-    // The condition of a diffuse and a direct normal irradiance (the sun on the horizon or
-    // below, or no diffuse: overcast of that brightness).
-    let condition = |diffuse: f32, direct_normal: f32| -> Result<SkyCondition, SkyError> {
-        if diffuse > 0.0 {
-            SkyCondition::from_irradiance(diffuse, direct_normal, z, day)
-        } else {
-            SkyCondition::new(1.0, 0.0)
-        }
-    };
-    let efficacy = |c: &SkyCondition| Efficacy::new(c, z, DEFAULT_PRECIPITABLE_WATER).global;
-    match m {
-        Measurement::GlobalIrradiance(g) => {
-            let g = non_negative("global irradiance [W/m²]", g)?;
-            let c = if up {
-                let parts = decomposition::erbs(g, z, i0)?;
-                condition(parts.diffuse, parts.direct_normal)?
-            } else {
-                check_limit("global irradiance [W/m²]", g, limit)?;
-                condition(g, 0.0)?
-            };
-            Ok(Reading {
-                lux: g * efficacy(&c),
-                global: g,
-                condition: up.then_some(c),
-            })
-        }
-        Measurement::Irradiance { global, diffuse } => {
-            let g = non_negative("global irradiance [W/m²]", global)?;
-            let d = non_negative("diffuse irradiance [W/m²]", diffuse)?;
-            check_limit("global irradiance [W/m²]", g, limit)?;
-            check_limit("diffuse irradiance [W/m²]", d, g)?;
-            if d == 0.0 && g > 0.0 {
-                return Err(SkyError::OutOfRange {
-                    parameter: "diffuse irradiance [W/m²]",
-                    value: d,
-                    min: f32::MIN_POSITIVE,
-                    max: g,
-                });
-            }
-            let direct_normal = if up && z <= MAX_BEAM_ZENITH {
-                (g - d) / math::cos(z)
-            } else {
-                0.0
-            };
-            let c = condition(if up { d } else { g }, direct_normal)?;
-            Ok(Reading {
-                lux: g * efficacy(&c),
-                global: g,
-                condition: up.then_some(c),
-            })
-        }
-        Measurement::GlobalIlluminance(lux) => {
-            let lux = non_negative("global illuminance [lx]", lux)?;
-            let mut k = FIRST_EFFICACY;
-            let mut g = lux / k;
-            let mut c = condition(g, 0.0)?;
-            for _ in 0..EFFICACY_ITERATIONS {
-                g = lux / k;
-                check_limit("global illuminance [lx]", lux, limit * k)?;
-                c = if up {
-                    let parts = decomposition::erbs(g.min(limit), z, i0)?;
-                    condition(parts.diffuse, parts.direct_normal)?
-                } else {
-                    condition(g, 0.0)?
-                };
-                k = efficacy(&c);
-            }
-            Ok(Reading {
-                lux,
-                global: g,
-                condition: up.then_some(c),
-            })
-        }
-    }
-}
-
-/// `value` if it is at most `max`, else [`SkyError::OutOfRange`] naming `parameter`.
-fn check_limit(parameter: &'static str, value: f32, max: f32) -> Result<f32, SkyError> {
-    crate::error::check_range(parameter, value, 0.0, max)
 }

@@ -90,7 +90,7 @@ pub fn clearness_index(global: f32, sun_zenith: f32, extraterrestrial: f32) -> f
 /// ```
 /// use sky_core::decomposition::erbs;
 /// let sunny = erbs(800.0, 30f32.to_radians(), 1361.0)?;
-/// assert!(sunny.diffuse < 0.25 * sunny.global && sunny.direct_normal > 700.0);
+/// assert!(sunny.diffuse < 0.3 * sunny.global && sunny.direct_normal > 600.0);
 /// let dull = erbs(100.0, 30f32.to_radians(), 1361.0)?;
 /// assert!(dull.diffuse > 0.95 * dull.global);
 /// # Ok::<(), sky_core::SkyError>(())

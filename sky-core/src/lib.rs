@@ -128,6 +128,7 @@ mod error;
 pub mod geom;
 pub mod led;
 mod math;
+pub mod measurement;
 pub mod neural;
 pub mod overcast;
 pub mod perez;

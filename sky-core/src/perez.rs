@@ -45,6 +45,7 @@ use crate::color::{self, Xyy};
 use crate::error::{SkyError, check_range};
 use crate::geom::Sun;
 use crate::math;
+use crate::measurement::Reading;
 use crate::photometry::{self, Photometry};
 use crate::preetham::PerezCoefficients;
 
@@ -128,8 +129,8 @@ pub const ALL_WEATHER: [[[f32; 4]; 5]; 8] = [
 ///
 /// ```
 /// use sky_core::perez::SkyCondition;
-/// // Diffuse 100 W/m², direct normal 700 W/m², sun 40° from the zenith, 1 July.
-/// let sky = SkyCondition::from_irradiance(100.0, 700.0, 40f32.to_radians(), 182)?;
+/// // Diffuse 100 W/m², direct normal 800 W/m², sun 40° from the zenith, 1 July.
+/// let sky = SkyCondition::from_irradiance(100.0, 800.0, 40f32.to_radians(), 182)?;
 /// assert_eq!(sky.bin(), 8); // clear
 /// let overcast = SkyCondition::from_irradiance(150.0, 0.0, 40f32.to_radians(), 182)?;
 /// assert_eq!((overcast.bin(), overcast.epsilon()), (1, 1.0));
@@ -325,6 +326,31 @@ impl PerezSky {
             0.0
         };
         Ok(sky)
+    }
+
+    /// The sky of an outdoor measurement ([`crate::measurement`]) taken with the sun at `sun`:
+    /// the reading's sky condition, scaled to its diffuse illuminance (diffuse irradiance times
+    /// Perez's diffuse efficacy).
+    ///
+    /// ```
+    /// use sky_core::measurement::Measurement;
+    /// use sky_core::{Photometry, PerezSky, Sun};
+    /// let sun = Sun::new(35f32.to_radians(), 1.0)?;
+    /// let reading = Measurement::Irradiance { global: 420.0, diffuse: 260.0 }.read(sun.zenith(), 120)?;
+    /// let sky = PerezSky::from_reading(sun, &reading)?;
+    /// let diffuse_lux = sky.horizontal_illuminance().y;
+    /// assert!(diffuse_lux > 260.0 * 100.0 && diffuse_lux < 260.0 * 140.0);
+    /// # Ok::<(), sky_core::SkyError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`SkyError::SunBelowHorizon`] when the reading has no sky condition (the sun was down)
+    /// or `sun` is below the horizon.
+    pub fn from_reading(sun: Sun, reading: &Reading) -> Result<Self, SkyError> {
+        let condition = reading.condition.ok_or(SkyError::SunBelowHorizon {
+            zenith: sun.zenith(),
+        })?;
+        Self::new(sun, condition, reading.diffuse_illuminance(sun.zenith()))
     }
 
     /// The same sky with the chromaticity (`x`, `y`) (CIE 1931) everywhere.
