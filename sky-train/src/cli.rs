@@ -98,11 +98,19 @@ pub struct ScheduleArgs {
     /// Longitude in degrees, east positive (-180 to 180).
     #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = longitude)]
     pub lon: f64,
-    /// The UTC date, YYYY-MM-DD (years 1 to 2999).
-    #[arg(long, value_name = "YYYY-MM-DD", value_parser = date)]
-    pub date: (i32, u32, u32),
-    /// Minutes between rows, from 00:00 UTC (1 to 1440).
-    #[arg(long, value_name = "MIN", default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=1440))]
+    /// The UTC date, YYYY-MM-DD (years 1 to 2999); required unless --measurements is given.
+    #[arg(long, value_name = "YYYY-MM-DD", value_parser = date, required_unless_present = "measurements", conflicts_with = "measurements")]
+    pub date: Option<(i32, u32, u32)>,
+    /// Drive the schedule by outdoor measurements instead of the clear sky: a CSV file whose
+    /// header names `utc` (RFC 3339) and `global_lux` (a lux sensor) or `ghi_wm2` with optional
+    /// `dhi_wm2` (pyranometers). One output row per reading, with two more columns: sky_type
+    /// (the Perez sky-clearness bin, 1 overcast to 8 clear; 0 with the sun below the horizon)
+    /// and clear_sky_index (the reading over the clear sky's horizontal illuminance, which is
+    /// the sky alone, without the direct sun, until sky-core has a daylight model with the sun).
+    #[arg(long, value_name = "FILE.csv")]
+    pub measurements: Option<PathBuf>,
+    /// Minutes between rows, from 00:00 UTC (1 to 1440; not with --measurements).
+    #[arg(long, value_name = "MIN", default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=1440), conflicts_with = "measurements")]
     pub step: u32,
     /// Elevation of the site in metres above sea level (-500 to 10000).
     #[arg(long, value_name = "M", default_value_t = 0.0, allow_negative_numbers = true, value_parser = elevation)]
@@ -326,6 +334,38 @@ pub struct SkyArgs {
     /// Leave out the ringing filter of seed 001, eq. 5 (sh only).
     #[arg(long)]
     no_ringing_filter: bool,
+    /// The sun from a UTC time (RFC 3339, e.g. 2026-06-21T10:00:00Z) and a place (--lat,
+    /// --lon, --elevation), instead of --sun-zenith/--sun-azimuth; also dates a perez reading.
+    #[arg(long, value_name = "UTC")]
+    time: Option<String>,
+    /// Latitude in degrees, north positive (-90 to 90), with --time.
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = latitude)]
+    lat: Option<f64>,
+    /// Longitude in degrees, east positive (-180 to 180), with --time.
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = longitude)]
+    lon: Option<f64>,
+    /// Elevation of the place in metres (-500 to 10000; default 0), with --time.
+    #[arg(long, value_name = "M", allow_negative_numbers = true, value_parser = elevation)]
+    elevation: Option<f64>,
+    /// CIE standard general sky type, 1 (overcast) to 15 (cloudless, turbid) (cie only).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u8).range(1..=15))]
+    cie_type: Option<u8>,
+    /// Diffuse horizontal illuminance the CIE sky is scaled to, lux (cie only; default 10000).
+    #[arg(long, value_name = "LUX", value_parser = non_negative)]
+    diffuse_lux: Option<f64>,
+    /// Zenith luminance the CIE sky is scaled to, cd/m2 (cie only; instead of --diffuse-lux).
+    #[arg(long, value_name = "CD", value_parser = non_negative)]
+    zenith_luminance: Option<f64>,
+    /// Measured global horizontal irradiance, W/m2 (perez only; split by Erbs et al. 1982
+    /// without --dhi).
+    #[arg(long, value_name = "W", allow_negative_numbers = true, value_parser = finite)]
+    ghi: Option<f64>,
+    /// Measured diffuse horizontal irradiance, W/m2 (perez only, with --ghi).
+    #[arg(long, value_name = "W", allow_negative_numbers = true, value_parser = finite)]
+    dhi: Option<f64>,
+    /// Measured global horizontal illuminance, lux (perez only, instead of --ghi).
+    #[arg(long, value_name = "LUX", allow_negative_numbers = true, value_parser = finite)]
+    global_lux: Option<f64>,
 }
 
 impl SkyArgs {
@@ -338,28 +378,75 @@ impl SkyArgs {
                 Ok(Box::new(sources::Neural::new(
                     &weights,
                     ModelKind::Neural,
-                    &self.params(),
+                    &self.params()?,
                 )?))
             }
             (Some(_), model) => Err(sources::ParamError(format!(
                 "--weights applies to --model neural only, not --model {model}"
             ))
             .into()),
-            (None, model) => Ok(sources::build(model, &self.params())?),
+            (None, model) => Ok(sources::build(model, &self.params()?)?),
         }
     }
 
-    fn params(&self) -> SkyParams {
-        SkyParams {
-            sun_zenith_deg: self.sun_zenith,
-            sun_azimuth_deg: self.sun_azimuth,
+    fn params(&self) -> Result<SkyParams, sources::ParamError> {
+        let (sun_zenith_deg, sun_azimuth_deg, day_of_year) = self.sun()?;
+        Ok(SkyParams {
+            sun_zenith_deg,
+            sun_azimuth_deg,
             turbidity: self.turbidity,
             style: self.style.clone(),
             bands: self.bands,
             ringing_filter: self.no_ringing_filter.then_some(false),
+            cie_type: self.cie_type,
+            diffuse_lux: self.diffuse_lux,
+            zenith_luminance: self.zenith_luminance,
+            ghi: self.ghi,
+            dhi: self.dhi,
+            global_lux: self.global_lux,
+            day_of_year,
+        })
+    }
+
+    /// The sun's zenith and azimuth in degrees (sky-core's azimuth convention) and the day of
+    /// the year: from --time and the place, or from --sun-zenith/--sun-azimuth.
+    fn sun(&self) -> Result<SunAndDay, sources::ParamError> {
+        let err = |m: String| sources::ParamError(m);
+        let Some(time) = &self.time else {
+            if self.lat.is_some() || self.lon.is_some() || self.elevation.is_some() {
+                return Err(err("--lat/--lon/--elevation need --time".into()));
+            }
+            return Ok((self.sun_zenith, self.sun_azimuth, None));
+        };
+        if self.sun_zenith.is_some() || self.sun_azimuth.is_some() {
+            return Err(err(
+                "--time and --sun-zenith/--sun-azimuth are alternatives: give one".into(),
+            ));
         }
+        let (Some(lat), Some(lon)) = (self.lat, self.lon) else {
+            return Err(err("--time needs --lat and --lon".into()));
+        };
+        let site = sky_core::solar::Site::new(lat, lon, self.elevation.unwrap_or(0.0))
+            .map_err(|e| err(format!("--lat/--lon/--elevation: {e}")))?;
+        let t = crate::captures::manifest::UnixTime::parse(time)
+            .map_err(|e| err(format!("--time {e:#}")))?;
+        let p = t
+            .sun_position(&site)
+            .map_err(|e| err(format!("--time {e:#}")))?;
+        let (y, m, d, ..) = t.to_civil();
+        let day = sky_core::solar::UtcTime::new(y, m, d, 0, 0, 0.0)
+            .map_err(|e| err(format!("--time {time}: {e}")))?
+            .day_of_year();
+        Ok((
+            Some(p.zenith_deg()),
+            Some(sky_core::solar::compass_to_azimuth(p.azimuth_deg())),
+            Some(day),
+        ))
     }
 }
+
+/// A sun's zenith and azimuth in degrees and the day of the year, each when known.
+type SunAndDay = (Option<f64>, Option<f64>, Option<u32>);
 
 /// The part of the sphere an image covers.
 #[derive(Clone, Copy, ValueEnum)]
@@ -551,6 +638,13 @@ fn fit_sh(args: &FitShArgs, output: &mut dyn Write) -> Result<()> {
     Ok(())
 }
 
+fn non_negative(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+        _ => Err("expected a finite number, at least 0".into()),
+    }
+}
+
 fn finite(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(v) if v.is_finite() => Ok(v),
@@ -642,13 +736,19 @@ pub fn execute(command: Command, input: &mut dyn BufRead, output: &mut dyn Write
                 latitude: args.lat,
                 longitude: args.lon,
                 elevation: args.elevation,
-                date: args.date,
+                date: args.date.unwrap_or((2000, 1, 1)),
                 step_minutes: args.step,
                 turbidity: args.turbidity,
                 full_scale_lux: args.full_scale_lux,
             };
             let mut out = BufWriter::new(output);
-            crate::controller::schedule(&config, &mut out)?;
+            match &args.measurements {
+                Some(file) => {
+                    let rows = crate::controller::read_measurements(file)?;
+                    crate::controller::schedule_measured(&config, &rows, file, &mut out)?;
+                }
+                None => crate::controller::schedule(&config, &mut out)?,
+            }
             out.flush()?;
             Ok(())
         }
