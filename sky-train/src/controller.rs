@@ -14,7 +14,7 @@ use sky_core::solar::{Site, UtcTime};
 
 use crate::captures::manifest::UnixTime;
 
-use crate::sources::ParamError;
+use crate::args::{ParamError, stdin_pairs};
 
 /// What `schedule` needs.
 #[derive(Debug, Clone, Copy)]
@@ -168,7 +168,7 @@ pub fn schedule_measured(
             Some(r.measurement),
         )
         .map_err(|e| {
-            let what = crate::sources::describe(e, str::to_owned, " = ");
+            let what = crate::args::describe(e, str::to_owned, " = ");
             ParamError(format!(
                 "--measurements {} data row {} ({}): {what}",
                 file.display(),
@@ -192,32 +192,6 @@ pub fn schedule_measured(
         writeln!(output, "{l}")?;
     }
     Ok(())
-}
-
-/// Parses `YYYY-MM-DD` into a valid calendar date.
-///
-/// # Errors
-/// A [`ParamError`] naming `--date` and the expected form or the field out of range.
-pub fn parse_date(s: &str) -> Result<(i32, u32, u32), ParamError> {
-    let bad = || {
-        ParamError(format!(
-            "--date `{s}`: expected YYYY-MM-DD, e.g. 2026-06-21"
-        ))
-    };
-    let mut parts = s.trim().split('-');
-    let (Some(y), Some(m), Some(d), None) =
-        (parts.next(), parts.next(), parts.next(), parts.next())
-    else {
-        return Err(bad());
-    };
-    if y.len() != 4 || m.len() != 2 || d.len() != 2 {
-        return Err(bad());
-    }
-    let (Ok(y), Ok(m), Ok(d)) = (y.parse::<i32>(), m.parse::<u32>(), d.parse::<u32>()) else {
-        return Err(bad());
-    };
-    UtcTime::new(y, m, d, 0, 0, 0.0).map_err(|e| ParamError(format!("--date {s}: {e}")))?;
-    Ok((y, m, d))
 }
 
 /// Writes the schedule of one UTC day as CSV ([`SCHEDULE_HEADER`]): one row every
@@ -263,7 +237,7 @@ pub fn schedule(config: &ScheduleConfig, output: &mut dyn Write) -> Result<()> {
 /// A line that is not two numbers, or a chromaticity without a CCT, named by its line number.
 pub fn cct_lines(input: &mut dyn BufRead, output: &mut dyn Write) -> Result<()> {
     writeln!(output, "x,y,cct_k,duv")?;
-    for (n, x, y) in crate::cli::stdin_pairs(input, "x,y")? {
+    for (n, x, y) in stdin_pairs(input, "x,y")? {
         let (xv, yv) = match (x.parse::<f32>(), y.parse::<f32>()) {
             (Ok(a), Ok(b)) => (a, b),
             _ if n == 1 => continue, // a header line

@@ -16,6 +16,8 @@ use std::fmt;
 use sky_core::color::{self, Xyy};
 use sky_core::{Photometry, Vec3};
 
+use crate::args::describe;
+pub use crate::args::{ParamError, radians};
 pub use aoas::Aoas;
 pub use cie::Cie;
 pub use hosek::Hosek;
@@ -199,18 +201,6 @@ impl SkyParams {
     }
 }
 
-/// A parameter the user gave that the model rejects, phrased in the command line's terms.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ParamError(pub String);
-
-impl fmt::Display for ParamError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-impl std::error::Error for ParamError {}
-
 /// Builds the sky `kind` for `params`.
 ///
 /// # Errors
@@ -309,49 +299,6 @@ pub(crate) fn param_error(kind: ModelKind, e: sky_core::SkyError) -> ParamError 
     ParamError(msg)
 }
 
-/// Describes a sky-core error with each parameter named by `name` (given the parameter's name
-/// without its unit) and `separator` between the name and its value; angles in degrees.
-pub(crate) fn describe(
-    e: sky_core::SkyError,
-    name: impl Fn(&str) -> String,
-    separator: &str,
-) -> String {
-    use sky_core::SkyError as E;
-    // "clouds.radius [rad]" -> ("clouds.radius", "rad")
-    let split = |parameter: &'static str| match parameter.rsplit_once(" [") {
-        Some((base, unit)) => (base, unit.trim_end_matches(']')),
-        None => (parameter, ""),
-    };
-    match e {
-        E::NotFinite { parameter } => {
-            format!("{} must be a finite number", name(split(parameter).0))
-        }
-        E::OutOfRange {
-            parameter,
-            value,
-            min,
-            max,
-        } => {
-            let (base, unit) = split(parameter);
-            let (value, min, max, unit) = match unit {
-                "rad" => (
-                    value.to_degrees(),
-                    min.to_degrees(),
-                    max.to_degrees(),
-                    " deg".to_owned(),
-                ),
-                "" => (value, min, max, String::new()),
-                other => (value, min, max, format!(" {other}")),
-            };
-            format!(
-                "{}{separator}{value}{unit} is outside the valid range [{min}, {max}]{unit}",
-                name(base)
-            )
-        }
-        other => other.to_string(),
-    }
-}
-
 fn flag(parameter: &str) -> &str {
     match parameter {
         "turbidity" => "--turbidity",
@@ -373,11 +320,4 @@ fn photometric_rgb_batch<S: Photometry>(sky: &S, dirs: &[Vec3], out: &mut [Vec3]
     for (o, d) in out.iter_mut().zip(dirs) {
         *o = color::xyz_to_linear_srgb(sky.xyz(*d));
     }
-}
-
-/// Converts degrees to radians in f64 and rounds once to f32.
-#[allow(clippy::cast_possible_truncation)] // the point of the function
-#[must_use]
-pub fn radians(deg: f64) -> f32 {
-    deg.to_radians() as f32
 }
