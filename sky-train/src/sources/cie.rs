@@ -14,7 +14,7 @@ pub struct Cie(pub CieSky);
 
 impl Cie {
     /// The CIE sky for `params`: `--cie-type` (1-15) and the sun are required; the level is
-    /// `--zenith-luminance` or `--diffuse-lux` (default [`DEFAULT_DIFFUSE_LUX`]).
+    /// `--zenith-luminance` or `--diffuse-lux` (default 10,000 lx).
     ///
     /// # Errors
     /// A [`ParamError`] when a parameter is missing, refused or out of range.

@@ -66,7 +66,7 @@ pub enum ModelKind {
     /// A CIE standard general sky, ISO 15469:2004 (sky-core; `--cie-type`, `--diffuse-lux` or
     /// `--zenith-luminance`).
     Cie,
-    /// The Perez all-weather sky of a measurement (sky-core; `--ghi` [`--dhi`] or
+    /// The Perez all-weather sky of a measurement (sky-core; `--ghi`, optionally `--dhi`, or
     /// `--global-lux`).
     Perez,
 }
