@@ -3,6 +3,7 @@
 # microcontroller and wasm32, and the firmware examples agree with the host under qemu: the f32
 # skies on a Cortex-M4F (mps2-an386), the fixed-point neural sky on a Cortex-M3 (lm3s6965evb)
 # and a Cortex-M0 (microbit), and the lighting controller's day on all three.
+# The sensor-driven controller day runs on the Cortex-M4F and the Cortex-M3.
 #
 # Uses Debian's rustc-web with -Zbuild-std (shared/DESIGN.md, "Toolchains"); the settings live in
 # scripts/cross/config.toml (workspace builds) and firmware/.cargo/config.toml (the firmware).
@@ -61,6 +62,8 @@ runs=(
   "thumbv7em-none-eabihf mps2-an386 cortex-m4 controller"              # controller's day, FPU
   "thumbv7m-none-eabi lm3s6965evb cortex-m3 controller"                # the same, soft float
   "thumbv6m-none-eabi microbit cortex-m0 controller"                   # the same, ARMv6-M
+  "thumbv7em-none-eabihf mps2-an386 cortex-m4 weather-controller"      # sensor-driven day, FPU
+  "thumbv7m-none-eabi lm3s6965evb cortex-m3 weather-controller"        # the same, soft float
 )
 for run in "${runs[@]}"; do
   read -r target machine cpu bin features <<<"$run"
