@@ -1,6 +1,8 @@
 //! Reading a capture sequence (seed 000 §III-D): every frame is checked, read, reduced to its
 //! training samples and a small evaluation grid, and dropped before the next one is read, so
 //! memory holds one full-resolution frame at a time (a 4096 × 2048 frame is 96 MiB as RGB f32).
+//! Frames are at most [`MAX_IMAGE_PIXELS`](crate::image_io::MAX_IMAGE_PIXELS) (8192 × 4096), a
+//! limit checked from every header before any frame is read.
 
 use std::path::{Path, PathBuf};
 
@@ -99,8 +101,9 @@ pub fn list(dir: &Path) -> Result<(Option<Manifest>, FrameList)> {
     Ok((manifest, frames))
 }
 
-/// Checks an OpenEXR file's header: readable, R, G and B channels, a 2:1 latitude-longitude
-/// image. Returns its size.
+/// Checks an OpenEXR file's header: readable, at most
+/// [`MAX_IMAGE_PIXELS`](crate::image_io::MAX_IMAGE_PIXELS), R, G and B channels, a 2:1
+/// latitude-longitude image. Returns its size.
 ///
 /// # Errors
 /// A message naming the file and what is wrong.
@@ -137,6 +140,10 @@ pub fn check_header(path: &Path) -> Result<(usize, usize)> {
                 names.join(", ")
             }
         );
+    }
+    for header in &meta.headers {
+        crate::image_io::check_image_size(header.layer_size.width(), header.layer_size.height())
+            .with_context(|| p.to_string())?;
     }
     let (w, h) = (header.layer_size.width(), header.layer_size.height());
     if w != 2 * h || h < 8 {

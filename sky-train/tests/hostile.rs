@@ -1,0 +1,200 @@
+//! Hostile input (issue 19): each case a test named after it, run through the `sky-train`
+//! binary as a user would, under a 1 GiB address-space limit (`prlimit --as`) so that an
+//! allocation beyond what a command states it needs fails the test instead of the machine.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+/// The address space the binary may use: the largest frame (384 MiB) and its working arrays
+/// fit; the 1.5 GiB and 24 GiB frames the cases' headers claim do not.
+const ADDRESS_SPACE: &str = "--as=1073741824";
+
+/// Runs `sky-train args` with `stdin` under [`ADDRESS_SPACE`].
+fn sky_train(args: &[&str], stdin: &str) -> Output {
+    use std::io::Write;
+    let mut child = Command::new("prlimit")
+        .arg(ADDRESS_SPACE)
+        .arg(env!("CARGO_BIN_EXE_sky-train"))
+        .args(args)
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("prlimit and sky-train run");
+    child
+        .stdin
+        .take()
+        .expect("stdin")
+        .write_all(stdin.as_bytes())
+        .expect("stdin written");
+    child.wait_with_output().expect("sky-train ends")
+}
+
+/// Asserts `args` succeed; returns stdout.
+fn succeeds(args: &[&str], stdin: &str) -> String {
+    let out = sky_train(args, stdin);
+    assert!(
+        out.status.success(),
+        "{args:?}: {:?} {}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).expect("UTF-8")
+}
+
+/// Asserts that `args` fail with an exit status (not a signal: no abort, no panic) and one
+/// stderr line holding every `needle`; returns the status.
+fn fails(args: &[&str], stdin: &str, needles: &[&str]) -> i32 {
+    let out = sky_train(args, stdin);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let code = out
+        .status
+        .code()
+        .unwrap_or_else(|| panic!("{args:?} was killed ({:?}): {stderr}", out.status));
+    assert!(code != 0 && code != 101, "{args:?}: exit {code}: {stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{args:?}: `{stderr}`");
+    for needle in needles {
+        assert!(
+            stderr.contains(needle),
+            "{args:?}: `{stderr}` lacks `{needle}`"
+        );
+    }
+    code
+}
+
+fn path(p: &Path) -> &str {
+    p.to_str().expect("UTF-8 path")
+}
+
+/// A synthesized capture sequence of `frames` frames `width` wide in `dir`.
+fn synthesize(dir: &Path, width: usize, frames: usize) {
+    succeeds(
+        &[
+            "captures",
+            "synthesize",
+            "--out",
+            path(dir),
+            "--width",
+            &width.to_string(),
+            "--frames",
+            &frames.to_string(),
+            "--start",
+            "08:00",
+        ],
+        "",
+    );
+}
+
+/// Where the value of the OpenEXR header attribute `name` of type `ty` starts in `bytes`.
+fn attribute(bytes: &[u8], name: &str, ty: &str) -> Option<usize> {
+    let key = format!("{name}\0{ty}\0");
+    let at = bytes.windows(key.len()).position(|w| w == key.as_bytes())?;
+    Some(at + key.len() + 4) // after the value's size
+}
+
+/// Patches an OpenEXR file's `dataWindow` and `displayWindow` to claim `width` × `height`,
+/// and its `chunkCount` (when present) to match, as a consistent hostile header would.
+fn claim_size(file: &Path, width: i32, height: i32) {
+    let mut bytes = std::fs::read(file).expect("frame");
+    for name in ["dataWindow", "displayWindow"] {
+        let at = attribute(&bytes, name, "box2i").expect("window");
+        for (k, v) in [0, 0, width - 1, height - 1].into_iter().enumerate() {
+            bytes[at + 4 * k..at + 4 * k + 4].copy_from_slice(&i32::to_le_bytes(v));
+        }
+    }
+    let int =
+        |at: usize| i32::from_le_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]);
+    let chunks = match attribute(&bytes, "tiles", "tiledesc") {
+        // One level of tiles (the frames' writer uses no mip levels).
+        Some(at) => {
+            let (tx, ty) = (int(at), int(at + 4));
+            ((width + tx - 1) / tx) * ((height + ty - 1) / ty)
+        }
+        None => {
+            let compression =
+                attribute(&bytes, "compression", "compression").map_or(0, |at| bytes[at]);
+            // Scan lines per chunk of each compression method (OpenEXR file layout: none,
+            // RLE, ZIPS, ZIP, PIZ, PXR24, B44, B44A, DWAA, DWAB).
+            let lines = [1, 1, 1, 16, 32, 16, 32, 32, 32, 256][usize::from(compression.min(9))];
+            (height + lines - 1) / lines
+        }
+    };
+    if let Some(at) = attribute(&bytes, "chunkCount", "int") {
+        bytes[at..at + 4].copy_from_slice(&i32::to_le_bytes(chunks));
+    }
+    std::fs::write(file, bytes).expect("patched");
+}
+
+/// Case 1: a frame whose header claims 65536 × 32768 or 16384 × 8192 pixels is refused from its
+/// header, naming the file and the limit, by every command that reads captures.
+#[test]
+fn exr_header_claiming_a_huge_frame_is_refused_before_allocating() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let caps = dir.path().join("caps");
+    synthesize(&caps, 64, 4);
+    let weights = dir.path().join("sky.weights");
+    succeeds(
+        &[
+            "captures",
+            "train",
+            "--input",
+            path(&caps),
+            "--no-cross-validation",
+            "--max-iterations",
+            "2",
+            "--samples",
+            "64",
+            "--out",
+            path(&weights),
+        ],
+        "",
+    );
+    let mut frames: Vec<_> = std::fs::read_dir(&caps)
+        .expect("folder")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "exr"))
+        .collect();
+    frames.sort();
+    let name = frames[0]
+        .file_name()
+        .and_then(|n| n.to_str())
+        .expect("name");
+    for (w, h) in [(65536, 32768), (16384, 8192)] {
+        for frame in &frames {
+            claim_size(frame, w, h);
+        }
+        let claim = format!("{w}x{h}");
+        for args in [
+            vec![
+                "captures",
+                "train",
+                "--input",
+                path(&caps),
+                "--no-cross-validation",
+            ],
+            vec![
+                "captures",
+                "interpolate",
+                "--input",
+                path(&caps),
+                "--weights",
+                path(&weights),
+                "--out",
+                path(&dir.path().join("gaps")),
+            ],
+            vec![
+                "captures",
+                "strip",
+                "--input",
+                path(&caps),
+                "--weights",
+                path(&weights),
+                "--out",
+                path(&dir.path().join("s.png")),
+            ],
+        ] {
+            fails(&args, "", &[name, &claim, "8192x4096"]);
+        }
+    }
+    assert!(!dir.path().join("gaps").exists() && !dir.path().join("s.png").exists());
+}
