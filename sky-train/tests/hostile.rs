@@ -198,3 +198,95 @@ fn exr_header_claiming_a_huge_frame_is_refused_before_allocating() {
     }
     assert!(!dir.path().join("gaps").exists() && !dir.path().join("s.png").exists());
 }
+
+/// The strip `captures strip` writes: (width, height, luminance per pixel) of the sRGB PNG.
+fn read_strip(file: &Path) -> (usize, usize, Vec<f32>) {
+    let decoder = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(file).expect("strip"),
+    ));
+    let mut reader = decoder.read_info().expect("a PNG");
+    let mut buf = vec![0; reader.output_buffer_size().expect("size")];
+    let info = reader.next_frame(&mut buf).expect("decodes");
+    let luminance = buf[..info.buffer_size()]
+        .chunks(3)
+        .map(|p| 0.2126 * f32::from(p[0]) + 0.7152 * f32::from(p[1]) + 0.0722 * f32::from(p[2]))
+        .collect();
+    (info.width as usize, info.height as usize, luminance)
+}
+
+/// The column of the brightest pixel (summed over its rows) of the `tw` × `th` cell at `x0`,
+/// `y0` of a strip.
+fn brightest_column(strip: &(usize, usize, Vec<f32>), x0: usize, y0: usize, tw: usize) -> usize {
+    let th = tw / 4;
+    (0..tw)
+        .map(|x| {
+            let sum: f32 = (0..th).map(|y| strip.2[(y0 + y) * strip.0 + x0 + x]).sum();
+            (x, sum)
+        })
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .map_or(0, |(x, _)| x)
+}
+
+/// Case 2: `captures strip` at its default thumbnail width (128) of captures narrower than
+/// that, and of captures between one and two times as wide: no panic, and each network
+/// thumbnail shows the whole panorama, turned like the capture above it: its brightest column
+/// (the sky around the sun) lies within 3 of 128 columns of the capture's (8 before the fix at
+/// 240 pixels wide, where it showed the first 128 columns of 240).
+#[test]
+fn strip_thumbnails_wider_than_the_captures() {
+    for width in [64, 240] {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let caps = dir.path().join("caps");
+        synthesize(&caps, width, 4);
+        let weights = dir.path().join("sky.weights");
+        succeeds(
+            &[
+                "captures",
+                "train",
+                "--input",
+                path(&caps),
+                "--no-cross-validation",
+                "--max-iterations",
+                "40",
+                "--samples",
+                "1024",
+                "--out",
+                path(&weights),
+            ],
+            "",
+        );
+        let out = dir.path().join("s.png");
+        succeeds(
+            &[
+                "captures",
+                "strip",
+                "--input",
+                path(&caps),
+                "--weights",
+                path(&weights),
+                "--out",
+                path(&out),
+                "--captures",
+                "2",
+                "--between",
+                "0",
+            ],
+            "",
+        );
+        let strip = read_strip(&out);
+        let (tw, gap) = (128, 4);
+        assert_eq!((strip.0, strip.1), (2 * tw + gap, 2 * (tw / 4) + gap));
+        for cell in 0..2 {
+            let x0 = cell * (tw + gap);
+            let capture = brightest_column(&strip, x0, 0, tw);
+            let network = brightest_column(&strip, x0, tw / 4 + gap, tw);
+            let apart = capture
+                .abs_diff(network)
+                .min(tw - capture.abs_diff(network));
+            assert!(
+                apart <= 3,
+                "captures {width} wide, cell {cell}: brightest columns {capture} (capture) and {network} (network)"
+            );
+        }
+    }
+}
