@@ -137,12 +137,20 @@ pub fn encode<const H: usize>(weights: &NeuralWeights<H>) -> Result<Vec<u8>> {
     Ok(bytes)
 }
 
-/// Writes `weights` as a weight file, atomically.
+/// Writes `weights` as a weight file, atomically: the bytes are decoded again and written only
+/// when they decode (every float finite, a valid header), so that a file a reader would refuse
+/// never replaces the one at `path`.
 ///
 /// # Errors
-/// On I/O errors.
+/// When the weights do not make a valid file (nothing is written then), or on I/O errors.
 pub fn write_weights<const H: usize>(path: &Path, weights: &NeuralWeights<H>) -> Result<()> {
     let bytes = encode(weights)?;
+    NeuralWeights::<H>::decode(&bytes).map_err(|e| {
+        anyhow::anyhow!(
+            "{}: not written: the network does not make a valid weight file ({e})",
+            path.display()
+        )
+    })?;
     write_atomically(path, |f| Ok(std::io::Write::write_all(f, &bytes)?))
 }
 

@@ -85,6 +85,22 @@ fn synthesize(dir: &Path, width: usize, frames: usize) {
     );
 }
 
+/// `captures train` on `caps` without cross-validation, for `iterations` and `samples` per
+/// frame.
+fn captures_train<'a>(caps: &'a str, iterations: &'a str, samples: &'a str) -> Vec<&'a str> {
+    vec![
+        "captures",
+        "train",
+        "--input",
+        caps,
+        "--no-cross-validation",
+        "--max-iterations",
+        iterations,
+        "--samples",
+        samples,
+    ]
+}
+
 /// Where the value of the OpenEXR header attribute `name` of type `ty` starts in `bytes`.
 fn attribute(bytes: &[u8], name: &str, ty: &str) -> Option<usize> {
     let key = format!("{name}\0{ty}\0");
@@ -133,22 +149,9 @@ fn exr_header_claiming_a_huge_frame_is_refused_before_allocating() {
     let caps = dir.path().join("caps");
     synthesize(&caps, 64, 4);
     let weights = dir.path().join("sky.weights");
-    succeeds(
-        &[
-            "captures",
-            "train",
-            "--input",
-            path(&caps),
-            "--no-cross-validation",
-            "--max-iterations",
-            "2",
-            "--samples",
-            "64",
-            "--out",
-            path(&weights),
-        ],
-        "",
-    );
+    let mut train = captures_train(path(&caps), "2", "64");
+    train.extend(["--out", path(&weights)]);
+    succeeds(&train, "");
     let mut frames: Vec<_> = std::fs::read_dir(&caps)
         .expect("folder")
         .filter_map(|e| e.ok().map(|e| e.path()))
@@ -239,22 +242,9 @@ fn strip_thumbnails_wider_than_the_captures() {
         let caps = dir.path().join("caps");
         synthesize(&caps, width, 4);
         let weights = dir.path().join("sky.weights");
-        succeeds(
-            &[
-                "captures",
-                "train",
-                "--input",
-                path(&caps),
-                "--no-cross-validation",
-                "--max-iterations",
-                "40",
-                "--samples",
-                "1024",
-                "--out",
-                path(&weights),
-            ],
-            "",
-        );
+        let mut train = captures_train(path(&caps), "40", "1024");
+        train.extend(["--out", path(&weights)]);
+        succeeds(&train, "");
         let out = dir.path().join("s.png");
         succeeds(
             &[
@@ -288,5 +278,82 @@ fn strip_thumbnails_wider_than_the_captures() {
                 "captures {width} wide, cell {cell}: brightest columns {capture} (capture) and {network} (network)"
             );
         }
+    }
+}
+
+/// Sets the manifest exposure of the first frame (`first_only`) or of every frame.
+fn set_exposure(caps: &Path, exposure: &str, first_only: bool) {
+    let manifest = caps.join("captures.toml");
+    let text = std::fs::read_to_string(&manifest).expect("manifest");
+    let mut done = false;
+    let lines: Vec<String> = text
+        .lines()
+        .map(|l| {
+            if l.starts_with("exposure = ") && !(first_only && done) {
+                done = true;
+                format!("exposure = {exposure}")
+            } else {
+                l.to_string()
+            }
+        })
+        .collect();
+    std::fs::write(&manifest, lines.join("\n")).expect("manifest written");
+}
+
+/// Case 3: a training that diverges (radiance beyond f32 from a manifest exposure of 1e-40, one
+/// frame 1e17 times brighter than the others, a checkpoint with huge parameters) exits non-zero
+/// and leaves the good weight file in place.
+#[test]
+fn diverged_training_keeps_the_good_weights() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let caps = dir.path().join("caps");
+    synthesize(&caps, 64, 4);
+    let train = captures_train(path(&caps), "10", "256");
+    succeeds(&train, "");
+    let weights = caps.join("sky.weights");
+    let good = std::fs::read(&weights).expect("weights");
+    set_exposure(&caps, "1e-40", false);
+    fails(&train, "", &["sky_0800.exr", "exposure 1e-40", "f32"]);
+    assert_eq!(std::fs::read(&weights).expect("weights"), good);
+    for exposure in ["1e-20", "1e-36"] {
+        set_exposure(&caps, "2e-3", false);
+        set_exposure(&caps, exposure, true);
+        fails(&train, "", &["diverged", "NRMSE"]);
+        assert_eq!(
+            std::fs::read(&weights).expect("weights"),
+            good,
+            "{exposure}"
+        );
+    }
+
+    // `train` from a checkpoint of huge parameters.
+    let out = dir.path().join("sky.skyn");
+    let small = [
+        "--turbidities",
+        "2,4",
+        "--sun-zeniths",
+        "3",
+        "--views",
+        "4x8",
+        "--max-iterations",
+        "2",
+        "--out",
+        path(&out),
+    ];
+    let mut args = vec!["train"];
+    args.extend(small);
+    succeeds(&args, "");
+    let good = std::fs::read(&out).expect("weights");
+    let checkpoint = dir.path().join("run.ckpt");
+    args.extend(["--checkpoint", path(&checkpoint)]);
+    for (value, needle) in [("1e300", "1e300"), ("1e30", "diverged")] {
+        let params = vec![value; 123].join("\n");
+        std::fs::write(
+            &checkpoint,
+            format!("sky-train checkpoint 2\nsizes 6 12 3\niteration 0\nlambda none\n{params}\n"),
+        )
+        .expect("checkpoint");
+        fails(&args, "", &[needle]);
+        assert_eq!(std::fs::read(&out).expect("weights"), good, "{value}");
     }
 }

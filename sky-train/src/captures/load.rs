@@ -307,6 +307,20 @@ fn read_frame(
     }
     #[allow(clippy::cast_possible_truncation)]
     let scale = (1.0 / exposure) as f32;
+    // Radiance is f32 from here on (samples, the network, the weight file).
+    if let Some(i) = image
+        .pixels
+        .iter()
+        .position(|c| !(*c * scale).is_finite() || (c.max_element() > 0.0 && scale == 0.0))
+    {
+        bail!(
+            "{p}: exposure {exposure:e} makes pixel ({}, {}) {:?} a radiance outside f32's range \
+             (pixel values are divided by the manifest's exposure)",
+            i % w,
+            i / w,
+            image.pixels[i].to_array()
+        );
+    }
     // Eq. 10: rotate every view so that the sun's azimuth is π.
     let rotate = found.azimuth - std::f64::consts::PI;
     let (sr, cr) = rotate.sin_cos();

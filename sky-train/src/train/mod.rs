@@ -118,6 +118,11 @@ impl Milestone {
     }
 }
 
+/// A training whose best validation NRMSE is above this (or not a number) has diverged: its
+/// error exceeds the whole range of the sky's radiance, worse than any constant sky, and
+/// [`train`] returns an error instead of the network.
+pub const DIVERGED_NRMSE: f64 = 1.0;
+
 /// What early stopping watches: the mean NRMSE of a network on skies it is not trained on.
 pub trait Validation {
     /// The mean NRMSE of `trained` over the validation skies.
@@ -434,7 +439,8 @@ fn progress_bar(config: &TrainConfig) -> ProgressBar {
 /// captured frames, [`crate::captures`]), stopping early on `validation`.
 ///
 /// # Errors
-/// When the checkpoint cannot be read or written.
+/// When the checkpoint cannot be read or written, or when training diverged (its best
+/// validation NRMSE is above [`DIVERGED_NRMSE`] or not a number).
 pub fn train<V: Validation + ?Sized>(
     config: &TrainConfig,
     set: &DataSet,
@@ -531,6 +537,9 @@ pub fn train<V: Validation + ?Sized>(
             "validation NRMSE {v:.5} (best {:.5})",
             best.validation_nrmse
         ));
+        if !net.params.iter().all(|p| p.is_finite()) {
+            break; // diverged (backprop); the best network so far is kept
+        }
         if let Some(path) = &config.checkpoint {
             let lambda = lm_state.as_ref().map(|lm| lm.lambda);
             checkpoint::write(path, &net, iteration + 1, lambda)?;
@@ -545,6 +554,14 @@ pub fn train<V: Validation + ?Sized>(
         }
     }
     bar.finish_and_clear();
+    if best.validation_nrmse.is_nan() || best.validation_nrmse > DIVERGED_NRMSE {
+        bail!(
+            "training diverged: the best validation NRMSE is {} after {} iterations (a usable \
+             network is below {DIVERGED_NRMSE}); check the training data's values",
+            best.validation_nrmse,
+            best.iterations
+        );
+    }
     best.seconds = start.elapsed().as_secs_f64();
     best.milestone = milestone;
     Ok(best)
@@ -667,8 +684,19 @@ pub mod checkpoint {
             None
         };
         let params: Vec<f64> = lines.map(str::parse).collect::<Result<_, _>>()?;
-        if params.len() != Net::param_count(sizes) || params.iter().any(|p| !p.is_finite()) {
-            bail!("the checkpoint's parameters are incomplete or not finite");
+        if params.len() != Net::param_count(sizes) {
+            bail!(
+                "the checkpoint holds {} parameters, a {sizes:?} network has {}",
+                params.len(),
+                Net::param_count(sizes)
+            );
+        }
+        // A weight file holds f32: a parameter beyond f32's range could never be written.
+        if let Some(p) = params
+            .iter()
+            .find(|p| p.is_nan() || p.abs() > f64::from(f32::MAX))
+        {
+            bail!("the checkpoint's parameter {p:e} is not a finite f32");
         }
         Ok(Resume {
             net: Net {
