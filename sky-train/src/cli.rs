@@ -661,7 +661,9 @@ pub fn execute(command: Command, input: &mut dyn BufRead, output: &mut dyn Write
         Command::Export(args) => {
             let weights = export::read_weights::<12>(&args.weights)?;
             let text = match args.format {
-                ExportFormat::F32 => export::pretrained_source(&weights, &args.name, &args.weights),
+                ExportFormat::F32 => {
+                    export::pretrained_source(&weights, &args.name, &args.weights)?
+                }
                 ExportFormat::Fixed => {
                     export::pretrained_fixed_source(&weights, &args.name, &args.weights)?
                 }

@@ -273,6 +273,9 @@ pub fn fixed_rust_source<const H: usize>(
     s
 }
 
+/// The source name as the contents of a Rust byte string: NUL as `\0`, every other byte that
+/// is not printable ASCII, and `"` and `\`, escaped (`escape_ascii`), so that no weight file
+/// can end the string.
 fn escape_source(source: &[u8; 32]) -> String {
     source
         .iter()
@@ -280,41 +283,67 @@ fn escape_source(source: &[u8; 32]) -> String {
             if b == 0 {
                 "\\0".to_string()
             } else {
-                (b as char).to_string()
+                b.escape_ascii().to_string()
             }
         })
         .collect()
 }
 
+/// Checks that `name` can be a generated constant's name: an upper-case Rust identifier
+/// (`A`-`Z`, then `A`-`Z`, `0`-`9` or `_`, at most 64 characters), so that it is written into
+/// the source as it is and never changes the code around it.
+///
+/// # Errors
+/// Otherwise, naming `--name` and what it may hold.
+pub fn check_const_name(name: &str) -> Result<()> {
+    let mut chars = name.chars();
+    let valid = chars.next().is_some_and(|c| c.is_ascii_uppercase())
+        && chars.all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_')
+        && name.len() <= 64;
+    if !valid {
+        return Err(crate::sources::ParamError(format!(
+            "--name {:?}: expected an upper-case Rust identifier (A-Z, then A-Z, 0-9 or _, at most 64 characters), e.g. PREETHAM",
+            name
+        ))
+        .into());
+    }
+    Ok(())
+}
+
 /// The generated file of a shipped network: [`rust_source`] with the provenance and the
 /// command that regenerates it.
-#[must_use]
+///
+/// # Errors
+/// When `name` is not a constant's name ([`check_const_name`]).
 pub fn pretrained_source<const H: usize>(
     weights: &NeuralWeights<H>,
     name: &str,
     weights_path: &Path,
-) -> String {
+) -> Result<String> {
+    check_const_name(name)?;
     let file = file_name(weights_path);
-    rust_source(
+    Ok(rust_source(
         weights,
         name,
         &format!(
             "sky-train export --weights sky-core/weights/{file} --name {name} --out <this file>"
         ),
         &provenance(weights, &file),
-    )
+    ))
 }
 
 /// The generated file of a shipped network quantised for [`sky_core::neural::FixedNeuralSky`]:
 /// [`fixed_rust_source`] with the provenance and the command that regenerates it.
 ///
 /// # Errors
-/// When the weights do not fit the fixed-point format (the error names the value).
+/// When `name` is not a constant's name ([`check_const_name`]) or the weights do not fit the
+/// fixed-point format (the error names the value).
 pub fn pretrained_fixed_source<const H: usize>(
     weights: &NeuralWeights<H>,
     name: &str,
     weights_path: &Path,
 ) -> Result<String> {
+    check_const_name(name)?;
     let fixed = FixedNeuralWeights::quantise(weights)
         .map_err(|e| anyhow::anyhow!("{}: cannot quantise: {e}", weights_path.display()))?;
     let file = file_name(weights_path);
@@ -333,9 +362,15 @@ pub fn pretrained_fixed_source<const H: usize>(
     ))
 }
 
+/// The file name of `path` for a generated comment: anything but printable ASCII escaped (a
+/// newline in a file name would end the comment and start code).
 fn file_name(path: &Path) -> String {
-    path.file_name()
-        .map_or_else(String::new, |f| f.to_string_lossy().into_owned())
+    path.file_name().map_or_else(String::new, |f| {
+        f.to_string_lossy()
+            .chars()
+            .flat_map(char::escape_default)
+            .collect()
+    })
 }
 
 /// The doc lines of a shipped network's constant: what it was trained on, and from which file.

@@ -357,3 +357,100 @@ fn diverged_training_keeps_the_good_weights() {
         assert_eq!(std::fs::read(&out).expect("weights"), good, "{value}");
     }
 }
+
+/// `args` as the `&str`s [`sky_train`] takes.
+fn strs(args: &[String]) -> Vec<&str> {
+    args.iter().map(String::as_str).collect()
+}
+
+/// The shipped Preetham weight file with its 32-byte source name replaced by `name` (NUL
+/// padded) and its checksum made valid again.
+fn weights_named(name: &[u8]) -> Vec<u8> {
+    use sky_core::neural::{NeuralWeights, pretrained, weights};
+    let mut bytes = vec![0; NeuralWeights::<12>::ENCODED_LEN];
+    pretrained::PREETHAM.encode(&mut bytes).expect("encodes");
+    bytes[88..120].fill(0);
+    bytes[88..88 + name.len()].copy_from_slice(name);
+    let n = bytes.len();
+    let crc = weights::crc32(&bytes[..n - 4]);
+    bytes[n - 4..].copy_from_slice(&crc.to_le_bytes());
+    bytes
+}
+
+/// Case 7: `export` writes no code it was not meant to: a `--name` that is not an upper-case
+/// identifier is refused; a source name with a quote stays inside its byte string; a file
+/// name with a newline stays inside its comment; a source name with control characters (a
+/// terminal escape sequence) is refused by the decoder, and no command prints it.
+#[test]
+fn generated_source_escapes_names() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("w.rs");
+    let good = dir.path().join("preetham.skyn");
+    std::fs::write(&good, weights_named(b"preetham")).expect("weights");
+    let export = |weights: &Path, name: &str| {
+        vec![
+            "export".to_string(),
+            "--weights".into(),
+            path(weights).into(),
+            "--name".into(),
+            name.into(),
+            "--out".into(),
+            path(&out).into(),
+        ]
+    };
+    for name in ["X\"; panic!(); //", "lower", "1X", "", "A B", "É"] {
+        let args = export(&good, name);
+        let code = fails(&strs(&args), "", &["--name"]);
+        assert_eq!(code, 2, "{name}");
+        assert!(!out.exists(), "{name}");
+    }
+
+    let quoted = dir.path().join("quoted.skyn");
+    let payload = b"\";}fn injected(){}//";
+    std::fs::write(&quoted, weights_named(payload)).expect("weights");
+    succeeds(&strs(&export(&quoted, "QUOTED")), "");
+    let text = std::fs::read_to_string(&out).expect("generated");
+    let expected = format!(
+        "    source: *b\"\\\";}}fn injected(){{}}//{}\",",
+        "\\0".repeat(32 - payload.len())
+    );
+    assert!(text.lines().any(|l| l == expected), "{text}");
+
+    let odd = dir.path().join("w\nfn injected() {}\n.skyn");
+    std::fs::write(&odd, weights_named(b"preetham")).expect("weights");
+    succeeds(&strs(&export(&odd, "ODD")), "");
+    let text = std::fs::read_to_string(&out).expect("generated");
+    assert!(!text.lines().any(|l| l.starts_with("fn ")), "{text}");
+    std::fs::remove_file(&out).expect("removed");
+
+    let escape = dir.path().join("escape.skyn");
+    std::fs::write(&escape, weights_named(b"\x1b[2J\x1b]0;owned\x07")).expect("weights");
+    for args in [
+        export(&escape, "ESCAPE"),
+        [
+            "sample",
+            "--model",
+            "neural",
+            "--sun-zenith",
+            "30",
+            "--weights",
+        ]
+        .map(String::from)
+        .into_iter()
+        .chain([path(&escape).to_string()])
+        .collect(),
+    ] {
+        let run = sky_train(&strs(&args), "0,0\n");
+        assert!(!run.status.success(), "{args:?}");
+        assert!(
+            !run.stderr.contains(&0x1b) && !run.stdout.contains(&0x1b),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        assert!(
+            String::from_utf8_lossy(&run.stderr).contains("source model"),
+            "{args:?}"
+        );
+    }
+    assert!(!out.exists());
+}
