@@ -159,7 +159,24 @@ pub fn write_weights<const H: usize>(path: &Path, weights: &NeuralWeights<H>) ->
 /// # Errors
 /// When the file cannot be read or does not decode (the error says why).
 pub fn read_weights<const H: usize>(path: &Path) -> Result<NeuralWeights<H>> {
-    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    use std::io::Read;
+    let needed = NeuralWeights::<H>::ENCODED_LEN;
+    let file =
+        std::fs::File::open(path).with_context(|| format!("cannot read {}", path.display()))?;
+    if let Ok(len) = file.metadata().map(|m| m.len())
+        && len > needed as u64
+    {
+        bail!(
+            "{}: {len} bytes, but a 6-{H}-3 weight file has {needed}",
+            path.display()
+        );
+    }
+    // At most one byte more than a file of this shape (a device or a growing file reports no
+    // length), so that a longer file is never read whole.
+    let mut bytes = Vec::new();
+    file.take(needed as u64 + 1)
+        .read_to_end(&mut bytes)
+        .with_context(|| format!("cannot read {}", path.display()))?;
     NeuralWeights::decode(&bytes).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
 }
 

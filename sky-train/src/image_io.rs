@@ -165,26 +165,60 @@ pub fn check_image_size(width: usize, height: usize) -> Result<()> {
 /// # Errors
 /// When the file cannot be read, is not OpenEXR, is too large, or lacks R, G or B.
 pub fn read_exr(path: &Path) -> Result<RgbImage> {
+    let file = File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
+    read_exr_from(std::io::BufReader::new(file))
+        .with_context(|| format!("cannot read OpenEXR file {}", path.display()))
+}
+
+/// [`read_exr`] from a reader positioned at the start of an OpenEXR file.
+///
+/// # Errors
+/// As [`read_exr`].
+pub fn read_exr_from(mut reader: impl std::io::Read + std::io::Seek + Send) -> Result<RgbImage> {
     use exr::prelude::*;
-    let meta = exr::meta::MetaData::read_from_file(path, false)
-        .with_context(|| format!("cannot read OpenEXR file {}", path.display()))?;
+    let meta = exr::meta::MetaData::read_from_buffered(&mut reader, false)?;
     for header in &meta.headers {
-        check_image_size(header.layer_size.width(), header.layer_size.height())
-            .with_context(|| path.display().to_string())?;
+        check_image_size(header.layer_size.width(), header.layer_size.height())?;
     }
-    let image = read_first_rgba_layer_from_file(
-        path,
-        |resolution, _| RgbImage {
-            width: resolution.width(),
-            height: resolution.height(),
-            pixels: vec![Vec3::ZERO; resolution.width() * resolution.height()],
-        },
-        |img: &mut RgbImage, pos, (r, g, b, _a): (f32, f32, f32, f32)| {
-            img.pixels[pos.y() * img.width + pos.x()] = Vec3::new(r, g, b);
-        },
-    )
-    .with_context(|| format!("cannot read OpenEXR file {}", path.display()))?;
+    reader.rewind()?;
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .rgba_channels(
+            |resolution, _| RgbImage {
+                width: resolution.width(),
+                height: resolution.height(),
+                pixels: vec![Vec3::ZERO; resolution.width() * resolution.height()],
+            },
+            |img: &mut RgbImage, pos, (r, g, b, _a): (f32, f32, f32, f32)| {
+                img.pixels[pos.y() * img.width + pos.x()] = Vec3::new(r, g, b);
+            },
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .from_buffered(reader)?;
     Ok(image.layer_data.channel_data.pixels)
+}
+
+/// Reads the text file `path` of at most `max_bytes` bytes (the limit is checked while
+/// reading, so a device or a growing file cannot make it read without end).
+///
+/// # Errors
+/// When the file cannot be read, is longer, or is not UTF-8; the message names the file.
+pub fn read_text(path: &Path, max_bytes: u64) -> Result<String> {
+    use std::io::Read;
+    let file = File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
+    let mut text = String::new();
+    file.take(max_bytes + 1)
+        .read_to_string(&mut text)
+        .with_context(|| format!("cannot read {} as UTF-8 text", path.display()))?;
+    if text.len() as u64 > max_bytes {
+        bail!(
+            "{}: longer than {max_bytes} bytes, the largest file of its kind read",
+            path.display()
+        );
+    }
+    Ok(text)
 }
 
 /// Writes `text` to `path` atomically.

@@ -6,6 +6,7 @@ pub mod bench;
 pub mod captures;
 pub mod cli;
 pub mod controller;
+pub mod csv_input;
 pub mod dispatch;
 pub mod eval;
 pub mod export;

@@ -454,3 +454,23 @@ fn generated_source_escapes_names() {
     }
     assert!(!out.exists());
 }
+
+/// Case 5: the first stdin line is a header only when it names the columns; otherwise it is
+/// data like any other line (`NaN,0`, `inf,0`, `0.31.27,0.3290` are errors naming line 1, exit
+/// status 2), and a UTF-8 byte-order mark before it is dropped.
+#[test]
+fn first_stdin_line_is_data_unless_it_names_the_columns() {
+    let commands: [(&[&str], &str, &str); 1] = [(&["cct"], "x,y", "0.3127,0.3290")];
+    for (args, header, good) in commands {
+        for bad in ["NaN,0", "inf,0", "0.31.27,0.3290", "-inf,1e999"] {
+            let code = fails(args, &format!("{bad}\n{good}\n"), &["stdin line 1", header]);
+            assert_eq!(code, 2, "{args:?} {bad}");
+            let code = fails(args, &format!("{good}\n{bad}\n"), &["stdin line 2", header]);
+            assert_eq!(code, 2, "{args:?} {bad}");
+        }
+        let rows = |stdin: &str| succeeds(args, stdin).lines().count() - 1;
+        assert_eq!(rows(&format!("\u{feff}{good}\n{good}\n")), 2, "{args:?}");
+        assert_eq!(rows(&format!("{header}\n{good}\n")), 1, "{args:?}");
+        assert_eq!(rows(&format!("\u{feff}{header}\n{good}\n")), 1, "{args:?}");
+    }
+}

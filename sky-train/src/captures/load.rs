@@ -108,8 +108,18 @@ pub fn list(dir: &Path) -> Result<(Option<Manifest>, FrameList)> {
 /// # Errors
 /// A message naming the file and what is wrong.
 pub fn check_header(path: &Path) -> Result<(usize, usize)> {
-    let p = path.display();
-    let meta = exr::meta::MetaData::read_from_file(path, false).map_err(|e| match e {
+    check_meta(
+        &path.display().to_string(),
+        exr::meta::MetaData::read_from_file(path, false),
+    )
+}
+
+/// [`check_header`] of the header read from the file named `p`.
+fn check_meta(
+    p: &str,
+    meta: std::result::Result<exr::meta::MetaData, exr::error::Error>,
+) -> Result<(usize, usize)> {
+    let meta = meta.map_err(|e| match e {
         exr::error::Error::Io(io) if io.kind() != std::io::ErrorKind::UnexpectedEof => {
             anyhow::anyhow!("{p}: cannot read: {io}")
         }
@@ -207,7 +217,15 @@ pub fn load(dir: &Path, config: &LoadConfig) -> Result<Sequence> {
     };
     let mut frames = Vec::with_capacity(list.len());
     for (k, (path, time, exposure)) in list.iter().enumerate() {
-        let frame = read_frame(
+        let image = crate::image_io::read_exr(path).map_err(|e| {
+            anyhow::anyhow!(
+                "{}: truncated or corrupt OpenEXR data: {}",
+                path.display(),
+                e.root_cause()
+            )
+        })?;
+        let frame = reduce_frame(
+            &image,
             path,
             *time,
             *exposure,
@@ -234,9 +252,37 @@ fn to_u32(k: usize) -> u32 {
     u32::try_from(k).unwrap_or(u32::MAX)
 }
 
-/// Reads one frame and reduces it to samples and its evaluation grid.
+/// One frame from the bytes of an OpenEXR file, checked, read and reduced as [`load`] does
+/// with each file of a folder without a manifest (exposure 1, no site, the skyline estimate,
+/// 64 samples): what the fuzz target `capture_frame` runs on every input.
+///
+/// # Errors
+/// As [`load`] for a bad frame.
+pub fn frame_from_bytes(bytes: &[u8]) -> Result<Frame> {
+    let name = Path::new("frame.exr");
+    let (width, height) = check_meta(
+        "frame.exr",
+        exr::meta::MetaData::read_from_buffered(bytes, false),
+    )?;
+    let image = crate::image_io::read_exr_from(std::io::Cursor::new(bytes))
+        .map_err(|e| anyhow::anyhow!("frame.exr: truncated or corrupt OpenEXR data: {e}"))?;
+    if (image.width, image.height) != (width, height) {
+        bail!("frame.exr: the first RGB layer is not the header's size");
+    }
+    let grid = Equirect::new(to_u32(width), to_u32(height), Extent::Sphere)
+        .map_err(|e| anyhow::anyhow!("{e}"))?;
+    let config = LoadConfig {
+        samples_per_frame: 64,
+        progress: false,
+        ..LoadConfig::default()
+    };
+    reduce_frame(&image, name, None, 1.0, None, None, &grid, &config, 0)
+}
+
+/// A frame's image reduced to its samples and evaluation grid (see the module docs).
 #[allow(clippy::too_many_arguments)]
-fn read_frame(
+fn reduce_frame(
+    image: &crate::image_io::RgbImage,
     path: &Path,
     time: Option<UnixTime>,
     exposure: f64,
@@ -247,9 +293,6 @@ fn read_frame(
     index: usize,
 ) -> Result<Frame> {
     let p = path.display();
-    let image = crate::image_io::read_exr(path).map_err(|e| {
-        anyhow::anyhow!("{p}: truncated or corrupt OpenEXR data: {}", e.root_cause())
-    })?;
     let (w, h) = (image.width, image.height);
     let luminance: Vec<f32> = image
         .pixels
@@ -354,7 +397,7 @@ fn read_frame(
     }
     // The evaluation grid: every `stride`-th pixel of the upper hemisphere.
     let stride = w.div_ceil(config.eval_width).max(1);
-    let eval = EvalGrid::sample(&image, &valid, stride, scale);
+    let eval = EvalGrid::sample(image, &valid, stride, scale);
     Ok(Frame {
         file: path.to_path_buf(),
         time,
