@@ -527,3 +527,34 @@ fn sh_outputs_are_non_negative_and_black_below_the_horizon() {
         }
     }
 }
+
+/// Case 4: budgets are kept: `train --hidden 255 --max-seconds 1 --max-iterations 1` stops on
+/// its clock (the random starts' race included; 183 s and 1 GB before) within the 1 GiB
+/// address space, and a network whose Levenberg-Marquardt normal equations cannot fit
+/// (`--hidden 255,255`: 67,833 parameters, a 37 GB matrix) is refused before training, exit 2.
+#[test]
+fn training_budgets_are_kept() {
+    let started = std::time::Instant::now();
+    let out = succeeds(
+        &[
+            "train",
+            "--hidden",
+            "255",
+            "--max-seconds",
+            "1",
+            "--max-iterations",
+            "1",
+        ],
+        "",
+    );
+    let seconds = started.elapsed().as_secs_f64();
+    // Sampling, the validation and test images and one block of Jacobian rows past the clock
+    // take a few seconds more on this 2-core machine; 60 s leaves room for a loaded one.
+    assert!(seconds < 60.0, "{seconds} s: {out}");
+    let code = fails(
+        &["train", "--hidden", "255,255"],
+        "",
+        &["--hidden 255,255", "67833", "3000"],
+    );
+    assert_eq!(code, 2);
+}

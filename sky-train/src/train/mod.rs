@@ -92,6 +92,31 @@ impl TrainConfig {
     }
 }
 
+impl TrainConfig {
+    /// Checks what the configuration asks for is within the trainer's limits: LM trains at
+    /// most [`lm::MAX_PARAMETERS`] parameters.
+    ///
+    /// # Errors
+    /// A [`crate::sources::ParamError`] naming `--hidden`, the network's parameter count and
+    /// the limit.
+    pub fn check(&self) -> Result<()> {
+        let mut sizes = vec![6];
+        sizes.extend(&self.hidden);
+        sizes.push(3);
+        let p = Net::param_count(&sizes);
+        if self.optimizer == Optimizer::Lm && p > lm::MAX_PARAMETERS {
+            let hidden: Vec<String> = self.hidden.iter().map(ToString::to_string).collect();
+            return Err(crate::sources::ParamError(format!(
+                "--hidden {}: a network of {p} parameters; Levenberg-Marquardt trains at most {} (its normal equations are a P x P matrix per thread); use fewer neurons or --optimizer backprop",
+                hidden.join(","),
+                lm::MAX_PARAMETERS
+            ))
+            .into());
+        }
+        Ok(())
+    }
+}
+
 /// A figure to time training against: a mean NRMSE over some images.
 #[derive(Debug, Clone)]
 pub struct Milestone {
@@ -447,6 +472,9 @@ pub fn train<V: Validation + ?Sized>(
     validation: &V,
 ) -> Result<Trained> {
     let start = Instant::now();
+    config.check()?;
+    // Every step, the initial race included, stops when the wall-time budget is spent.
+    let deadline = start + std::time::Duration::from_secs_f64(config.max_seconds.clamp(0.0, 1e9));
     let scaling = config
         .init
         .as_ref()
@@ -471,7 +499,11 @@ pub fn train<V: Validation + ?Sized>(
                 "the initial network is {:?}, this run trains {sizes:?}",
                 net.sizes
             ),
-            None => (initial_net(config, &sizes, set, &scaling), 0, None),
+            None => (
+                initial_net(config, &sizes, set, &scaling, deadline),
+                0,
+                None,
+            ),
         },
     };
     let mut best = Trained {
@@ -495,7 +527,7 @@ pub fn train<V: Validation + ?Sized>(
             Optimizer::Lm => {
                 let problem = Problem::new(&net, set, &scaling, config.irradiance_weight);
                 let state = lm_state.get_or_insert_with(|| {
-                    let mut lm = Lm::new(&problem, net.params.clone());
+                    let mut lm = Lm::new(&problem, net.params.clone(), Some(deadline));
                     lm.lambda = resumed_lambda.unwrap_or(lm.lambda);
                     lm
                 });
@@ -569,7 +601,15 @@ pub fn train<V: Validation + ?Sized>(
 
 /// The starting network: the best of `config.restarts` random starts after a few LM steps each
 /// (random starts of a 123-parameter network differ a lot; a short race is cheap).
-fn initial_net(config: &TrainConfig, sizes: &[usize], set: &DataSet, scaling: &Scaling) -> Net {
+///
+/// The race shares the run's clock: it stops at `deadline`, with the best start so far.
+fn initial_net(
+    config: &TrainConfig,
+    sizes: &[usize],
+    set: &DataSet,
+    scaling: &Scaling,
+    deadline: Instant,
+) -> Net {
     let mut rng = rand::rngs::StdRng::seed_from_u64(config.seed);
     let candidates: Vec<Net> = (0..config.restarts.max(1))
         .map(|_| Net::random(sizes, &mut rng, 1.0))
@@ -590,7 +630,7 @@ fn initial_net(config: &TrainConfig, sizes: &[usize], set: &DataSet, scaling: &S
     let mut best: Option<(f64, Net)> = None;
     for mut net in candidates {
         let problem = Problem::new(&net, &subsample, scaling, config.irradiance_weight);
-        let mut state = Lm::new(&problem, net.params.clone());
+        let mut state = Lm::new(&problem, net.params.clone(), Some(deadline));
         for _ in 0..5 {
             if !state.step(&problem) {
                 break;
