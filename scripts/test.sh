@@ -2,7 +2,8 @@
 # The one test command (README, CI): installs what the project needs, then runs every check.
 #   host:  fmt, clippy (-D warnings), rustdoc (-D warnings), all workspace tests and doctests,
 #          the micromath accuracy test with sky-core's `micromath` feature on,
-#          20 s of fuzzing the neural weight-file decoder
+#          coverage-guided fuzzing of the decoders of outside input (scripts/fuzz.sh: five
+#          libFuzzer targets, 30 s each)
 #   cross: sky-core for thumbv7em / riscv32imac / wasm32 without std or alloc, and the firmware
 #          examples under qemu (Cortex-M4F; fixed point on Cortex-M3 and M0) checked against
 #          host-computed values
@@ -33,8 +34,8 @@ cargo test --workspace --locked
 step "sky-core's micromath feature: each model's error against its f64 reference"
 cargo test --locked -p sky-tests --features micromath --test micromath
 
-step "fuzz the weight-file decoder (bounded time)"
-cargo run --release --locked -q -p sky-train -- fuzz-weights --seconds 20
+step "coverage-guided fuzzing (libFuzzer): every decoder of outside input, 30 s each"
+scripts/fuzz.sh 30
 
 step "cross targets and firmware under qemu"
 scripts/cross.sh
