@@ -10,7 +10,7 @@
 
 use std::io::BufRead;
 
-use crate::sources::ParamError;
+use crate::args::ParamError;
 
 /// The longest line read, in bytes (a line of two numbers needs far less; the limit keeps a
 /// stream without newlines from growing a line without end).

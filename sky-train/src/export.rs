@@ -318,7 +318,7 @@ pub fn check_const_name(name: &str) -> Result<()> {
         && chars.all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_')
         && name.len() <= 64;
     if !valid {
-        return Err(crate::sources::ParamError(format!(
+        return Err(crate::args::ParamError(format!(
             "--name {:?}: expected an upper-case Rust identifier (A-Z, then A-Z, 0-9 or _, at most 64 characters), e.g. PREETHAM",
             name
         ))

@@ -49,7 +49,7 @@ use sky_core::aoas::{
 use sky_core::geom::{self, Sun};
 use sky_core::{SkyError, Vec3};
 
-use crate::sources::{ParamError, describe, radians};
+use crate::args::{ParamError, describe, radians};
 
 /// The largest style file read, bytes (a style with a thousand cloud polylines is smaller).
 pub const MAX_STYLE_BYTES: u64 = 1 << 20;

@@ -455,12 +455,19 @@ fn generated_source_escapes_names() {
     assert!(!out.exists());
 }
 
-/// Case 5: the first stdin line is a header only when it names the columns; otherwise it is
+/// Case 5 (`cct`, `sample`): the first stdin line is a header only when it names the columns; otherwise it is
 /// data like any other line (`NaN,0`, `inf,0`, `0.31.27,0.3290` are errors naming line 1, exit
 /// status 2), and a UTF-8 byte-order mark before it is dropped.
 #[test]
 fn first_stdin_line_is_data_unless_it_names_the_columns() {
-    let commands: [(&[&str], &str, &str); 1] = [(&["cct"], "x,y", "0.3127,0.3290")];
+    let commands: [(&[&str], &str, &str); 2] = [
+        (&["cct"], "x,y", "0.3127,0.3290"),
+        (
+            &["sample", "--sun-zenith", "30"],
+            "view_zenith_deg,view_azimuth_deg",
+            "10,20",
+        ),
+    ];
     for (args, header, good) in commands {
         for bad in ["NaN,0", "inf,0", "0.31.27,0.3290", "-inf,1e999"] {
             let code = fails(args, &format!("{bad}\n{good}\n"), &["stdin line 1", header]);

@@ -97,7 +97,7 @@ impl TrainConfig {
     /// most [`lm::MAX_PARAMETERS`] parameters.
     ///
     /// # Errors
-    /// A [`crate::sources::ParamError`] naming `--hidden`, the network's parameter count and
+    /// A [`crate::args::ParamError`] naming `--hidden`, the network's parameter count and
     /// the limit.
     pub fn check(&self) -> Result<()> {
         let mut sizes = vec![6];
@@ -106,7 +106,7 @@ impl TrainConfig {
         let p = Net::param_count(&sizes);
         if self.optimizer == Optimizer::Lm && p > lm::MAX_PARAMETERS {
             let hidden: Vec<String> = self.hidden.iter().map(ToString::to_string).collect();
-            return Err(crate::sources::ParamError(format!(
+            return Err(crate::args::ParamError(format!(
                 "--hidden {}: a network of {p} parameters; Levenberg-Marquardt trains at most {} (its normal equations are a P x P matrix per thread); use fewer neurons or --optimizer backprop",
                 hidden.join(","),
                 lm::MAX_PARAMETERS
@@ -133,7 +133,7 @@ impl Milestone {
     /// # Errors
     /// When the model rejects a test case.
     pub fn paper(model: ModelKind) -> Result<Option<Self>> {
-        let Some(figures) = crate::eval::PaperFigures::of(model) else {
+        let Some(figures) = dataset::PaperFigures::of(model) else {
             return Ok(None);
         };
         Ok(Some(Self {
