@@ -222,7 +222,7 @@ pub fn read_exr_from(mut reader: impl std::io::Read + std::io::Seek + Send) -> R
 /// When the file cannot be read, is longer, or is not UTF-8; the message names the file.
 pub fn read_text(path: &Path, max_bytes: u64) -> Result<String> {
     use std::io::Read;
-    let file = File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
+    let file = File::open(path).with_context(|| format!("cannot read {}", path.display()))?;
     let mut text = String::new();
     file.take(max_bytes + 1)
         .read_to_string(&mut text)
