@@ -10,15 +10,16 @@ use super::constituents::{
 /// A clear atmosphere. Everything else (the planet, air's density profile, the ozone layer's
 /// shape, the cross-sections) is fixed in [`constituents`].
 ///
-/// The default is a clear mid-latitude atmosphere:
-/// - aerosol optical depth 0.10 at 550 nm with Ångström exponent 1.3 (Ångström 1929's typical
-///   continental exponent; 0.10 is Preetham's turbidity 2 by [`Atmosphere::from_turbidity`] and
-///   about the median clear-sky AOD of continental mid-latitude AERONET sites),
-/// - aerosol single-scattering albedo 0.95 and Henyey-Greenstein asymmetry 0.70 (continental
-///   aerosol at 550 nm, OPAC: Hess, Koepke & Schult 1998, "continental clean/average"),
-/// - aerosol scale height 1.2 km (Bruneton 2017's demo; boundary-layer aerosol),
-/// - ozone column 300 DU (about the global mean total ozone; Bruneton 2017's default),
-/// - Lambertian ground albedo 0.2 (grass and soil, broadband).
+/// The default is a clear (cloudless) mid-latitude continental atmosphere:
+/// - the aerosol of OPAC's "continental average" type at 80 % relative humidity (Hess, Koepke
+///   & Schult 1998, "Optical Properties of Aerosols and Clouds: The Software Package OPAC",
+///   BAMS 79, Table 4): optical depth 0.151, single-scattering albedo 0.925 and asymmetry
+///   0.703 at 550 nm; Ångström exponent 1.3 (Ångström 1929's typical continental value, the one
+///   Preetham et al. 1999 use); exponential profile with a 1.2 km scale height (Bruneton 2017's
+///   demo: the boundary layer);
+/// - ozone column 300 DU (about the global mean total ozone; Bruneton 2017's default);
+/// - Lambertian ground albedo 0.2 (grass and soil, broadband);
+/// - air: the US Standard Atmosphere 1976, 360 ppm CO₂ (fixed, [`constituents`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Atmosphere {
     /// Aerosol optical depth at 550 nm (0 to 5).
@@ -40,10 +41,10 @@ pub struct Atmosphere {
 impl Default for Atmosphere {
     fn default() -> Self {
         Self {
-            aod_550: 0.10,
+            aod_550: 0.151,
             angstrom: 1.3,
-            aerosol_ssa: 0.95,
-            aerosol_g: 0.70,
+            aerosol_ssa: 0.925,
+            aerosol_g: 0.703,
             aerosol_scale_height_m: 1200.0,
             ozone_du: 300.0,
             ground_albedo: 0.2,

@@ -35,6 +35,7 @@ pub mod constituents;
 pub mod grid;
 pub mod montecarlo;
 pub mod photometry;
+pub mod record;
 pub mod sky;
 pub mod solar;
 pub mod spectra;

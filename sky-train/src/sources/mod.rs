@@ -6,6 +6,7 @@
 mod aoas;
 mod hosek;
 mod neural;
+mod physical;
 mod preetham;
 mod sh;
 
@@ -19,6 +20,7 @@ pub use crate::args::{ParamError, radians};
 pub use aoas::Aoas;
 pub use hosek::Hosek;
 pub use neural::Neural;
+pub use physical::{Physical, PhysicalOptions};
 pub use preetham::Preetham;
 pub use sh::Sh;
 
@@ -59,6 +61,10 @@ pub enum ModelKind {
     /// The spherical-harmonics lighting of the Preetham sky, reconstructed from sky-core's
     /// polynomial tables (seed 001; `--bands`, `--no-ringing-filter`).
     Sh,
+    /// The physically based spectral atmosphere (sky-train's `physical`: multiple scattering,
+    /// ozone, aerosol, the Earth's shadow; sun zenith 0-108 deg; `--aod` or `--turbidity`,
+    /// `--ozone-du`, `--albedo`, ...).
+    Physical,
 }
 
 impl ModelKind {
@@ -73,6 +79,7 @@ impl ModelKind {
             | Self::Aoas
             | Self::Sh => (0.0, 90.0),
             Self::Neural => (0.0, 180.0),
+            Self::Physical => (0.0, crate::physical::sky::MAX_SUN_ZENITH_DEG),
         }
     }
 
@@ -91,6 +98,7 @@ impl ModelKind {
             Self::Sh => (2.5, 6.0),
             Self::Hosek | Self::NeuralHosek => (1.0, 10.0),
             Self::Neural => (0.0, f64::INFINITY),
+            Self::Physical => crate::physical::atmosphere::TURBIDITY_RANGE,
             // AOAS has no turbidity (its atmosphere is set by its style).
             Self::Aoas => (0.0, 0.0),
         }
@@ -107,6 +115,7 @@ impl fmt::Display for ModelKind {
             Self::Neural => "neural",
             Self::Aoas => "aoas",
             Self::Sh => "sh",
+            Self::Physical => "physical",
         })
     }
 }
@@ -128,6 +137,8 @@ pub struct SkyParams {
     pub bands: Option<usize>,
     /// Whether the ringing filter of seed 001 eq. 5 is applied (sh only; on when absent).
     pub ringing_filter: Option<bool>,
+    /// The atmosphere and cache of the physical model (physical only).
+    pub physical: PhysicalOptions,
 }
 
 impl SkyParams {
@@ -196,6 +207,7 @@ pub fn build(kind: ModelKind, params: &SkyParams) -> Result<Box<dyn SkySource>, 
         )),
         ModelKind::Aoas => Ok(Box::new(Aoas::new(params)?)),
         ModelKind::Sh => Ok(Box::new(Sh::new(params)?)),
+        ModelKind::Physical => Ok(Box::new(Physical::new(params)?)),
     }
 }
 
@@ -212,13 +224,18 @@ impl SkyParams {
             return refuse("--style", "aoas");
         }
         if self.turbidity.is_some() && !kind.uses_turbidity() {
-            return refuse("--turbidity", "preetham, hosek, neural*, sh");
+            return refuse("--turbidity", "preetham, hosek, neural*, sh, physical");
         }
         if self.bands.is_some() && kind != ModelKind::Sh {
             return refuse("--bands", "sh");
         }
         if self.ringing_filter.is_some() && kind != ModelKind::Sh {
             return refuse("--no-ringing-filter", "sh");
+        }
+        if let Some(flag) = self.physical.first_flag()
+            && kind != ModelKind::Physical
+        {
+            return refuse(flag, "physical");
         }
         Ok(())
     }
