@@ -16,6 +16,7 @@ pub mod eval;
 pub mod export;
 pub mod fuzz;
 pub mod image_io;
+pub mod physical;
 pub mod plot;
 pub mod reference;
 pub mod render;

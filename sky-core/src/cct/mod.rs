@@ -17,7 +17,7 @@
 //! The computation is in f64 (about 90 evaluations of the locus, each a 95-term sum): it is
 //! meant for a controller's update every few seconds, not per pixel.
 
-mod cmf;
+pub mod cmf;
 
 use crate::error::SkyError;
 
