@@ -589,6 +589,8 @@ pub fn execute(command: Command, input: &mut dyn BufRead, output: &mut dyn Write
             )?;
             let sh = bench::sh_reconstruction(args.runs as usize)?;
             write!(output, "{}", bench::sh_report(&sh))?;
+            let cct = bench::cct(args.runs as usize)?;
+            write!(output, "{}", bench::cct_report(&cct))?;
             Ok(())
         }
         Command::Gallery(args) => gallery(&args, output),

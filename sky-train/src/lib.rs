@@ -11,6 +11,7 @@ pub mod eval;
 pub mod export;
 pub mod fuzz;
 pub mod image_io;
+pub mod planckian;
 pub mod plot;
 pub mod reference;
 pub mod render;

@@ -149,12 +149,12 @@ def cmf_source():
         "//! table; do not edit.",
         "",
         "/// The first wavelength of [`CMF`], in nm.",
-        "pub(crate) const FIRST_NM: f64 = 360.0;",
+        "pub const FIRST_NM: f64 = 360.0;",
         "/// The step between rows of [`CMF`], in nm.",
-        "pub(crate) const STEP_NM: f64 = 5.0;",
+        "pub const STEP_NM: f64 = 5.0;",
         "",
         "/// x̄, ȳ, z̄ per wavelength.",
-        f"pub(crate) const CMF: [[f64; 3]; {len(wl)}] = [",
+        f"pub const CMF: [[f64; 3]; {len(wl)}] = [",
     ]
     for row in values:
         lines.append("    [" + ", ".join(rust_float(v) for v in row) + "],")

@@ -5,12 +5,12 @@
 //! table; do not edit.
 
 /// The first wavelength of [`CMF`], in nm.
-pub(crate) const FIRST_NM: f64 = 360.0;
+pub const FIRST_NM: f64 = 360.0;
 /// The step between rows of [`CMF`], in nm.
-pub(crate) const STEP_NM: f64 = 5.0;
+pub const STEP_NM: f64 = 5.0;
 
 /// x̄, ȳ, z̄ per wavelength.
-pub(crate) const CMF: [[f64; 3]; 95] = [
+pub const CMF: [[f64; 3]; 95] = [
     [0.0001299, 3.917e-06, 0.0006061],
     [0.0002321, 6.965e-06, 0.001086],
     [0.0004149, 1.239e-05, 0.001946],
