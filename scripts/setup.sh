@@ -12,11 +12,29 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 tools="$root/.tools"
 mkdir -p "$tools"
 
+# version_at_least HAVE NEED: true when dotted version HAVE >= NEED.
+version_at_least() { [ "$(printf '%s\n%s\n' "$2" "$1" | sort -V | head -n 1)" = "$2" ]; }
+# The first dotted number a command prints (empty if it is missing).
+version_of() { "$@" 2>/dev/null | grep -oE '[0-9]+(\.[0-9]+)+' | head -n 1 || true; }
+
+# Debian's rustc-web builds the cross targets with -Zbuild-std: it must be at least the
+# workspace's MSRV (a stale package list offers 1.85), so an older one is upgraded.
+msrv=$(sed -n 's/^rust-version = "\(.*\)"/\1/p' "$root/Cargo.toml")
+# node --test and its reporters, playwright-core: Debian 12 ships 18.
+node_min=18
+
 need_apt=()
-[ -x /usr/bin/rustc ] && [ -d /usr/lib/rustlib/src/rust/library ] || need_apt+=(rustc-web rust-web-src)
+rustc_web=$(version_of /usr/bin/rustc --version)
+if [ -z "$rustc_web" ] || ! version_at_least "$rustc_web" "$msrv" ||
+  [ ! -d /usr/lib/rustlib/src/rust/library ]; then
+  need_apt+=(rustc-web cargo-web rust-web-src)
+fi
 command -v ld.lld >/dev/null || need_apt+=(lld)
 [ -x /usr/bin/chromium ] || need_apt+=(chromium)
-command -v node >/dev/null || need_apt+=(nodejs)
+node_version=$(version_of node --version)
+if [ -z "$node_version" ] || ! version_at_least "$node_version" "$node_min"; then
+  need_apt+=(nodejs)
+fi
 command -v npm >/dev/null || need_apt+=(npm)
 
 qemu_libs=(libaio1 libbpf1 libcapstone4 libfdt1 libfuse3-3 libibverbs1 libnuma1 libpixman-1-0
@@ -31,6 +49,16 @@ if [ ${#need_apt[@]} -gt 0 ]; then
   echo "setup: apt-get install ${need_apt[*]}"
   apt-get update -qq
   apt-get install -y -qq --no-install-recommends "${need_apt[@]}" >/dev/null
+fi
+rustc_web=$(version_of /usr/bin/rustc --version)
+if [ -z "$rustc_web" ] || ! version_at_least "$rustc_web" "$msrv"; then
+  echo "setup: /usr/bin/rustc is ${rustc_web:-missing}; the cross builds need rustc-web >= $msrv" >&2
+  exit 1
+fi
+node_version=$(version_of node --version)
+if [ -z "$node_version" ] || ! version_at_least "$node_version" "$node_min"; then
+  echo "setup: node is ${node_version:-missing}; the sky-wasm tests need node >= $node_min" >&2
+  exit 1
 fi
 
 if [ ! -x "$tools/qemu/usr/bin/qemu-system-arm" ]; then

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The one test command (README, CI): installs what the project needs, then runs every check.
-#   host:  fmt, clippy (-D warnings), rustdoc (-D warnings), all workspace tests and doctests,
+#   host:  fmt, clippy (-D warnings), rustdoc (-D warnings), all workspace tests and doctests
+#          (among them sky-train/tests/module_graph.rs: sky-train's modules import without cycles),
 #          the micromath accuracy test with sky-core's `micromath` feature on,
 #          20 s of fuzzing the neural weight-file decoder
 #   cross: sky-core for thumbv7em / riscv32imac / wasm32 without std or alloc, and the firmware

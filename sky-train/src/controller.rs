@@ -9,7 +9,7 @@ use sky_core::cct;
 use sky_core::controller::{example_luminaire, step};
 use sky_core::solar::{Site, UtcTime};
 
-use crate::sources::ParamError;
+use crate::args::{ParamError, stdin_pairs};
 
 /// What `schedule` needs.
 #[derive(Debug, Clone, Copy)]
@@ -32,32 +32,6 @@ pub struct ScheduleConfig {
 
 /// The CSV header of `schedule`.
 pub const SCHEDULE_HEADER: &str = "utc,sun_zenith_deg,sun_azimuth_deg,sun_elevation_deg,apparent_zenith_deg,cct_k,duv,horizontal_lux,red,green,blue,white";
-
-/// Parses `YYYY-MM-DD` into a valid calendar date.
-///
-/// # Errors
-/// A [`ParamError`] naming `--date` and the expected form or the field out of range.
-pub fn parse_date(s: &str) -> Result<(i32, u32, u32), ParamError> {
-    let bad = || {
-        ParamError(format!(
-            "--date `{s}`: expected YYYY-MM-DD, e.g. 2026-06-21"
-        ))
-    };
-    let mut parts = s.trim().split('-');
-    let (Some(y), Some(m), Some(d), None) =
-        (parts.next(), parts.next(), parts.next(), parts.next())
-    else {
-        return Err(bad());
-    };
-    if y.len() != 4 || m.len() != 2 || d.len() != 2 {
-        return Err(bad());
-    }
-    let (Ok(y), Ok(m), Ok(d)) = (y.parse::<i32>(), m.parse::<u32>(), d.parse::<u32>()) else {
-        return Err(bad());
-    };
-    UtcTime::new(y, m, d, 0, 0, 0.0).map_err(|e| ParamError(format!("--date {s}: {e}")))?;
-    Ok((y, m, d))
-}
 
 /// Writes the schedule of one UTC day as CSV ([`SCHEDULE_HEADER`]): one row every
 /// `step_minutes` from 00:00 UTC.
@@ -113,7 +87,7 @@ pub fn schedule(config: &ScheduleConfig, output: &mut dyn Write) -> Result<()> {
 /// A line that is not two numbers, or a chromaticity without a CCT, named by its line number.
 pub fn cct_lines(input: &mut dyn BufRead, output: &mut dyn Write) -> Result<()> {
     writeln!(output, "x,y,cct_k,duv")?;
-    for (n, x, y) in crate::cli::stdin_pairs(input, "x,y")? {
+    for (n, x, y) in stdin_pairs(input, "x,y")? {
         let (xv, yv) = match (x.parse::<f32>(), y.parse::<f32>()) {
             (Ok(a), Ok(b)) => (a, b),
             _ if n == 1 => continue, // a header line

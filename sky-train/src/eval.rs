@@ -13,45 +13,7 @@ use sky_core::geom::{Equirect, Extent};
 use crate::image_io::{self, RgbImage};
 use crate::render;
 use crate::sources::{self, ModelKind, SkyParams, SkySource};
-use crate::train::dataset::{self, SkyCase, TEST_SUN_AZIMUTH};
-
-/// Seed 000's Table 1 (cross-validation NRMSE) and Table 2 (mean irradiance: reference,
-/// network, absolute difference) for a model.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PaperFigures {
-    /// Table 1.
-    pub nrmse: f64,
-    /// Table 2: reference irradiance.
-    pub irradiance_reference: f64,
-    /// Table 2: network irradiance.
-    pub irradiance_network: f64,
-}
-
-impl PaperFigures {
-    /// The paper's figures for `model`, if it reports any.
-    #[must_use]
-    pub fn of(model: ModelKind) -> Option<Self> {
-        match model {
-            ModelKind::Preetham => Some(Self {
-                nrmse: 0.0145,
-                irradiance_reference: 0.11665,
-                irradiance_network: 0.11695,
-            }),
-            ModelKind::Hosek => Some(Self {
-                nrmse: 0.0395,
-                irradiance_reference: 0.03671,
-                irradiance_network: 0.03838,
-            }),
-            _ => None,
-        }
-    }
-
-    /// The relative irradiance difference of Table 2.
-    #[must_use]
-    pub fn irradiance_relative(&self) -> f64 {
-        (self.irradiance_network - self.irradiance_reference).abs() / self.irradiance_reference
-    }
-}
+use crate::train::dataset::{self, PaperFigures, SkyCase, TEST_SUN_AZIMUTH};
 
 /// One test image's figures.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -1,10 +1,14 @@
 //! The host side of the sky library: every sky model behind one [`sources::SkySource`] trait,
 //! rendering to OpenEXR and PNG, sampling to CSV, benchmarks, and independent f64 references
-//! ([`reference`](mod@reference)). The `sky-train` binary is a thin command-line front over this library.
+//! ([`reference`](mod@reference)). The `sky-train` binary is a thin command-line front over this library:
+//! [`cli`] parses, [`commands`] has one module per subcommand, [`args`] the value parsers
+//! they and the libraries share.
 
+pub mod args;
 pub mod bench;
 pub mod captures;
 pub mod cli;
+pub mod commands;
 pub mod controller;
 pub mod dispatch;
 pub mod eval;

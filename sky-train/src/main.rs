@@ -4,8 +4,8 @@ use std::io::{self, Write};
 use std::process::ExitCode;
 
 use clap::Parser;
+use sky_train::args::ParamError;
 use sky_train::cli::{self, Cli};
-use sky_train::sources::ParamError;
 
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {

@@ -49,7 +49,7 @@ use sky_core::aoas::{
 use sky_core::geom::{self, Sun};
 use sky_core::{SkyError, Vec3};
 
-use crate::sources::{ParamError, describe, radians};
+use crate::args::{ParamError, describe, radians};
 
 /// The noon elevation of a `time_of_day` without one, in degrees (the presets' value).
 const DEFAULT_NOON_ELEVATION_DEG: f64 = 60.0;

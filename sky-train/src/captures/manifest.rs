@@ -145,7 +145,7 @@ impl UnixTime {
             }
         };
         let (date, time) = body.split_once(['T', ' ']).ok_or_else(bad)?;
-        let (y, m, d) = crate::controller::parse_date(date).map_err(|_| bad())?;
+        let (y, m, d) = crate::args::parse_date(date).map_err(|_| bad())?;
         let mut hms = time.split(':');
         let (Some(h), Some(mi), Some(sec), None) = (hms.next(), hms.next(), hms.next(), hms.next())
         else {

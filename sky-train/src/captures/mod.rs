@@ -14,7 +14,6 @@
 //!   what real captures have (varying exposure, noise, a clipped sun, a skyline, camera
 //!   rotation), and their manifest.
 
-pub mod command;
 pub mod interpolate;
 pub mod load;
 pub mod manifest;

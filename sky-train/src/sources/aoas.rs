@@ -4,10 +4,11 @@
 use sky_core::aoas::{AoasSky, DayCycle};
 use sky_core::{SkyError, Sun, Vec3};
 
+use crate::args::{ParamError, describe, radians};
 use crate::dispatch;
 use crate::style_file;
 
-use super::{ModelKind, ParamError, SkyParams, SkySource, describe, param_error, radians};
+use super::{ModelKind, SkyParams, SkySource, param_error};
 
 /// [`sky_core::AoasSky`] as a [`SkySource`]: linear RGB in O'Neil's relative units (see
 /// [`AoasSky`]), so `sample`'s luminance Y is relative too, not cd/m².

@@ -14,6 +14,8 @@ use std::fmt;
 use sky_core::Vec3;
 use sky_core::color::{self, Xyy};
 
+use crate::args::describe;
+pub use crate::args::{ParamError, radians};
 pub use aoas::Aoas;
 pub use hosek::Hosek;
 pub use neural::Neural;
@@ -170,18 +172,6 @@ impl SkyParams {
     }
 }
 
-/// A parameter the user gave that the model rejects, phrased in the command line's terms.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ParamError(pub String);
-
-impl fmt::Display for ParamError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-impl std::error::Error for ParamError {}
-
 /// Builds the sky `kind` for `params`.
 ///
 /// # Errors
@@ -256,49 +246,6 @@ pub(crate) fn param_error(kind: ModelKind, e: sky_core::SkyError) -> ParamError 
     ParamError(msg)
 }
 
-/// Describes a sky-core error with each parameter named by `name` (given the parameter's name
-/// without its unit) and `separator` between the name and its value; angles in degrees.
-pub(crate) fn describe(
-    e: sky_core::SkyError,
-    name: impl Fn(&str) -> String,
-    separator: &str,
-) -> String {
-    use sky_core::SkyError as E;
-    // "clouds.radius [rad]" -> ("clouds.radius", "rad")
-    let split = |parameter: &'static str| match parameter.rsplit_once(" [") {
-        Some((base, unit)) => (base, unit.trim_end_matches(']')),
-        None => (parameter, ""),
-    };
-    match e {
-        E::NotFinite { parameter } => {
-            format!("{} must be a finite number", name(split(parameter).0))
-        }
-        E::OutOfRange {
-            parameter,
-            value,
-            min,
-            max,
-        } => {
-            let (base, unit) = split(parameter);
-            let (value, min, max, unit) = match unit {
-                "rad" => (
-                    value.to_degrees(),
-                    min.to_degrees(),
-                    max.to_degrees(),
-                    " deg".to_owned(),
-                ),
-                "" => (value, min, max, String::new()),
-                other => (value, min, max, format!(" {other}")),
-            };
-            format!(
-                "{}{separator}{value}{unit} is outside the valid range [{min}, {max}]{unit}",
-                name(base)
-            )
-        }
-        other => other.to_string(),
-    }
-}
-
 fn flag(parameter: &str) -> &str {
     match parameter {
         "turbidity" => "--turbidity",
@@ -307,11 +254,4 @@ fn flag(parameter: &str) -> &str {
         "SH bands" => "--bands",
         other => other,
     }
-}
-
-/// Converts degrees to radians in f64 and rounds once to f32.
-#[allow(clippy::cast_possible_truncation)] // the point of the function
-#[must_use]
-pub fn radians(deg: f64) -> f32 {
-    deg.to_radians() as f32
 }

@@ -210,6 +210,44 @@ pub fn paper_test_set(model: ModelKind) -> anyhow::Result<Vec<TestImage>> {
     test_set(model, &turbidities, &sun_zeniths(7))
 }
 
+/// Seed 000's Table 1 (cross-validation NRMSE) and Table 2 (mean irradiance: reference,
+/// network, absolute difference) for a model.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PaperFigures {
+    /// Table 1.
+    pub nrmse: f64,
+    /// Table 2: reference irradiance.
+    pub irradiance_reference: f64,
+    /// Table 2: network irradiance.
+    pub irradiance_network: f64,
+}
+
+impl PaperFigures {
+    /// The paper's figures for `model`, if it reports any.
+    #[must_use]
+    pub fn of(model: ModelKind) -> Option<Self> {
+        match model {
+            ModelKind::Preetham => Some(Self {
+                nrmse: 0.0145,
+                irradiance_reference: 0.11665,
+                irradiance_network: 0.11695,
+            }),
+            ModelKind::Hosek => Some(Self {
+                nrmse: 0.0395,
+                irradiance_reference: 0.03671,
+                irradiance_network: 0.03838,
+            }),
+            _ => None,
+        }
+    }
+
+    /// The relative irradiance difference of Table 2.
+    #[must_use]
+    pub fn irradiance_relative(&self) -> f64 {
+        (self.irradiance_network - self.irradiance_reference).abs() / self.irradiance_reference
+    }
+}
+
 /// Test images for every turbidity × sun zenith given.
 ///
 /// # Errors

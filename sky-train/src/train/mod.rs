@@ -108,7 +108,7 @@ impl Milestone {
     /// # Errors
     /// When the model rejects a test case.
     pub fn paper(model: ModelKind) -> Result<Option<Self>> {
-        let Some(figures) = crate::eval::PaperFigures::of(model) else {
+        let Some(figures) = dataset::PaperFigures::of(model) else {
             return Ok(None);
         };
         Ok(Some(Self {

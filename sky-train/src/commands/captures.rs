@@ -7,9 +7,10 @@ use std::time::Instant;
 use anyhow::Result;
 use clap::{Args, Subcommand};
 
-use super::load::{self, LoadConfig};
-use super::synthesize::{self, SynthConfig};
-use super::{interpolate, validate};
+use crate::args::{clock, date, duration_minutes, seconds};
+use crate::captures::load::{self, LoadConfig};
+use crate::captures::synthesize::{self, SynthConfig};
+use crate::captures::{Sequence, interpolate, manifest, validate};
 use crate::export::{self, TrainedOn};
 
 /// The `captures` subcommands.
@@ -50,7 +51,7 @@ pub struct TrainArgs {
     #[arg(long, default_value_t = 1)]
     pub seed: u32,
     /// Wall-time budget per training, seconds (1 to 86400).
-    #[arg(long, default_value_t = 60.0, value_parser = budget_seconds)]
+    #[arg(long, default_value_t = 60.0, value_parser = seconds)]
     pub max_seconds: f64,
     /// Iteration budget per training (1 to 100000).
     #[arg(long, default_value_t = 150, value_parser = clap::value_parser!(u32).range(1..=100_000))]
@@ -141,55 +142,11 @@ pub struct StripArgs {
     pub thumb_width: u32,
 }
 
-fn budget_seconds(s: &str) -> Result<f64, String> {
-    match s.parse::<f64>() {
-        Ok(v) if (1.0..=86400.0).contains(&v) => Ok(v),
-        _ => Err("expected seconds in [1, 86400]".into()),
-    }
-}
-
-fn date(s: &str) -> Result<(i32, u32, u32), String> {
-    crate::controller::parse_date(s).map_err(|e| e.0)
-}
-
-/// `HH:MM` as minutes after midnight.
-fn clock(s: &str) -> Result<u32, String> {
-    let bad = || format!("`{s}`: expected HH:MM (00:00 to 23:59)");
-    let (h, m) = s.split_once(':').ok_or_else(bad)?;
-    match (h.parse::<u32>(), m.parse::<u32>()) {
-        (Ok(h), Ok(m)) if h < 24 && m < 60 => Ok(h * 60 + m),
-        _ => Err(bad()),
-    }
-}
-
-/// A duration (`30s`, `1min`, `2m`, `1h`; a bare number is minutes) in minutes, 1 s to 24 h.
-fn duration_minutes(s: &str) -> Result<f64, String> {
-    let s = s.trim();
-    let split = s
-        .find(|c: char| !(c.is_ascii_digit() || c == '.'))
-        .unwrap_or(s.len());
-    let (number, unit) = s.split_at(split);
-    let factor = match unit.trim() {
-        "" | "m" | "min" => 1.0,
-        "s" | "sec" => 1.0 / 60.0,
-        "h" => 60.0,
-        _ => {
-            return Err(format!(
-                "`{s}`: expected a duration such as 30s, 1min or 1h"
-            ));
-        }
-    };
-    match number.parse::<f64>() {
-        Ok(v) if (1.0 / 60.0..=1440.0).contains(&(v * factor)) => Ok(v * factor),
-        _ => Err(format!("`{s}`: expected a duration from 1s to 24h")),
-    }
-}
-
 /// Runs a `captures` subcommand, reporting to `output`.
 ///
 /// # Errors
 /// Bad input (naming the file and the problem) or a failed write.
-pub fn execute(command: &CapturesCommand, output: &mut dyn Write) -> Result<()> {
+pub fn run(command: &CapturesCommand, output: &mut dyn Write) -> Result<()> {
     match command {
         CapturesCommand::Train(args) => train(args, output),
         CapturesCommand::Interpolate(args) => {
@@ -232,7 +189,7 @@ pub fn execute(command: &CapturesCommand, output: &mut dyn Write) -> Result<()> 
                 frames.len(),
                 args.width,
                 args.width / 2,
-                super::manifest::MANIFEST,
+                manifest::MANIFEST,
                 args.out.display(),
                 frames[0].time.rfc3339(),
                 frames[frames.len() - 1].time.rfc3339()
@@ -257,7 +214,7 @@ pub fn execute(command: &CapturesCommand, output: &mut dyn Write) -> Result<()> 
 }
 
 /// The captures of `dir` read for their suns only (few samples).
-fn load_for_suns(dir: &std::path::Path) -> Result<super::Sequence> {
+fn load_for_suns(dir: &std::path::Path) -> Result<Sequence> {
     load::load(
         dir,
         &LoadConfig {

@@ -1,0 +1,237 @@
+//! Command-line values, parsed and checked in one place for the subcommands and the libraries
+//! below them: numbers in a range, dates, clock times, durations, `a,b` lines on stdin, and the
+//! [`ParamError`] that names the flag and its valid range (exit status 2).
+//!
+//! The `fn(&str) -> Result<T, String>` parsers are clap value parsers
+//! (`#[arg(value_parser = args::latitude)]`); clap puts the flag's name before their message.
+
+use std::fmt;
+use std::io::BufRead;
+
+use anyhow::{Context, Result, bail};
+use sky_core::solar::UtcTime;
+
+/// A parameter the user gave that the model rejects, phrased in the command line's terms.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParamError(pub String);
+
+impl fmt::Display for ParamError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for ParamError {}
+
+/// Describes a sky-core error with each parameter named by `name` (given the parameter's name
+/// without its unit) and `separator` between the name and its value; angles in degrees.
+pub(crate) fn describe(
+    e: sky_core::SkyError,
+    name: impl Fn(&str) -> String,
+    separator: &str,
+) -> String {
+    use sky_core::SkyError as E;
+    // "clouds.radius [rad]" -> ("clouds.radius", "rad")
+    let split = |parameter: &'static str| match parameter.rsplit_once(" [") {
+        Some((base, unit)) => (base, unit.trim_end_matches(']')),
+        None => (parameter, ""),
+    };
+    match e {
+        E::NotFinite { parameter } => {
+            format!("{} must be a finite number", name(split(parameter).0))
+        }
+        E::OutOfRange {
+            parameter,
+            value,
+            min,
+            max,
+        } => {
+            let (base, unit) = split(parameter);
+            let (value, min, max, unit) = match unit {
+                "rad" => (
+                    value.to_degrees(),
+                    min.to_degrees(),
+                    max.to_degrees(),
+                    " deg".to_owned(),
+                ),
+                "" => (value, min, max, String::new()),
+                other => (value, min, max, format!(" {other}")),
+            };
+            format!(
+                "{}{separator}{value}{unit} is outside the valid range [{min}, {max}]{unit}",
+                name(base)
+            )
+        }
+        other => other.to_string(),
+    }
+}
+
+/// Converts degrees to radians in f64 and rounds once to f32.
+#[allow(clippy::cast_possible_truncation)] // the point of the function
+#[must_use]
+pub fn radians(deg: f64) -> f32 {
+    deg.to_radians() as f32
+}
+
+/// `s` as a number in `[min, max]`; the error names `what` and the range.
+///
+/// # Errors
+/// `expected {what} in [{min}, {max}]`.
+pub fn in_range(s: &str, min: f64, max: f64, what: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if (min..=max).contains(&v) => Ok(v),
+        _ => Err(format!("expected {what} in [{min}, {max}]")),
+    }
+}
+
+/// Any finite number.
+///
+/// # Errors
+/// Not a number, or infinite.
+pub fn finite(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err("expected a finite number".into()),
+    }
+}
+
+/// A latitude in degrees, north positive (-90 to 90).
+///
+/// # Errors
+/// Outside the range, or not a number.
+pub fn latitude(s: &str) -> Result<f64, String> {
+    in_range(s, -90.0, 90.0, "a latitude in degrees")
+}
+
+/// A longitude in degrees, east positive (-180 to 180).
+///
+/// # Errors
+/// Outside the range, or not a number.
+pub fn longitude(s: &str) -> Result<f64, String> {
+    in_range(s, -180.0, 180.0, "a longitude in degrees")
+}
+
+/// A site's elevation in metres above sea level (-500 to 10000).
+///
+/// # Errors
+/// Outside the range, or not a number.
+pub fn elevation(s: &str) -> Result<f64, String> {
+    in_range(s, -500.0, 10_000.0, "an elevation in metres")
+}
+
+/// A wall-time budget in seconds (1 to 86400).
+///
+/// # Errors
+/// Outside the range, or not a number.
+pub fn seconds(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if (1.0..=86400.0).contains(&v) => Ok(v),
+        _ => Err("expected seconds in [1, 86400]".into()),
+    }
+}
+
+/// The Levenberg-Marquardt weight of each sky's irradiance residual (0 to 100).
+///
+/// # Errors
+/// Outside the range, or not a number.
+pub fn irradiance_weight(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if (0.0..=100.0).contains(&v) => Ok(v),
+        _ => Err("expected a weight in [0, 100]".into()),
+    }
+}
+
+/// Parses `YYYY-MM-DD` into a valid calendar date.
+///
+/// # Errors
+/// A [`ParamError`] naming `--date` and the expected form or the field out of range.
+pub fn parse_date(s: &str) -> Result<(i32, u32, u32), ParamError> {
+    let bad = || {
+        ParamError(format!(
+            "--date `{s}`: expected YYYY-MM-DD, e.g. 2026-06-21"
+        ))
+    };
+    let mut parts = s.trim().split('-');
+    let (Some(y), Some(m), Some(d), None) =
+        (parts.next(), parts.next(), parts.next(), parts.next())
+    else {
+        return Err(bad());
+    };
+    if y.len() != 4 || m.len() != 2 || d.len() != 2 {
+        return Err(bad());
+    }
+    let (Ok(y), Ok(m), Ok(d)) = (y.parse::<i32>(), m.parse::<u32>(), d.parse::<u32>()) else {
+        return Err(bad());
+    };
+    UtcTime::new(y, m, d, 0, 0, 0.0).map_err(|e| ParamError(format!("--date {s}: {e}")))?;
+    Ok((y, m, d))
+}
+
+/// [`parse_date`] as a clap value parser.
+///
+/// # Errors
+/// As [`parse_date`].
+pub fn date(s: &str) -> Result<(i32, u32, u32), String> {
+    parse_date(s).map_err(|e| e.0)
+}
+
+/// `HH:MM` as minutes after midnight.
+///
+/// # Errors
+/// Not of that form, or out of 00:00 to 23:59.
+pub fn clock(s: &str) -> Result<u32, String> {
+    let bad = || format!("`{s}`: expected HH:MM (00:00 to 23:59)");
+    let (h, m) = s.split_once(':').ok_or_else(bad)?;
+    match (h.parse::<u32>(), m.parse::<u32>()) {
+        (Ok(h), Ok(m)) if h < 24 && m < 60 => Ok(h * 60 + m),
+        _ => Err(bad()),
+    }
+}
+
+/// A duration (`30s`, `1min`, `2m`, `1h`; a bare number is minutes) in minutes, 1 s to 24 h.
+///
+/// # Errors
+/// An unknown unit, or a duration out of the range.
+pub fn duration_minutes(s: &str) -> Result<f64, String> {
+    let s = s.trim();
+    let split = s
+        .find(|c: char| !(c.is_ascii_digit() || c == '.'))
+        .unwrap_or(s.len());
+    let (number, unit) = s.split_at(split);
+    let factor = match unit.trim() {
+        "" | "m" | "min" => 1.0,
+        "s" | "sec" => 1.0 / 60.0,
+        "h" => 60.0,
+        _ => {
+            return Err(format!(
+                "`{s}`: expected a duration such as 30s, 1min or 1h"
+            ));
+        }
+    };
+    match number.parse::<f64>() {
+        Ok(v) if (1.0 / 60.0..=1440.0).contains(&(v * factor)) => Ok(v * factor),
+        _ => Err(format!("`{s}`: expected a duration from 1s to 24h")),
+    }
+}
+
+/// The non-blank lines of `input` as (1-based line number, first field, second field), each
+/// line exactly two comma-separated fields named by `columns` (e.g. `x,y`) in the error.
+///
+/// # Errors
+/// An unreadable input, or a line without exactly two fields.
+pub fn stdin_pairs(input: &mut dyn BufRead, columns: &str) -> Result<Vec<(usize, String, String)>> {
+    let mut pairs = Vec::new();
+    for (n, line) in input.lines().enumerate() {
+        let line = line.context("cannot read stdin")?;
+        let line = line.trim();
+        if line.is_empty() {
+            continue;
+        }
+        let mut fields = line.split(',').map(str::trim);
+        let (Some(a), Some(b), None) = (fields.next(), fields.next(), fields.next()) else {
+            bail!("stdin line {}: expected `{columns}`, got `{line}`", n + 1);
+        };
+        pairs.push((n + 1, a.to_owned(), b.to_owned()));
+    }
+    Ok(pairs)
+}

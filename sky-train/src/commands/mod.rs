@@ -1,0 +1,135 @@
+//! The subcommands of `sky-train`, one module each: its arguments (a clap `Args` struct) and its
+//! `run`. [`crate::cli`] parses the command line and dispatches to them; the argument groups
+//! several subcommands share, [`SkyArgs`] and [`ImageArgs`], are here; the value parsers they
+//! all use are in [`crate::args`].
+
+pub mod bench;
+pub mod captures;
+pub mod cct;
+pub mod eval;
+pub mod export;
+pub mod fit_sh;
+pub mod fuzz_weights;
+pub mod gallery;
+pub mod render;
+pub mod sample;
+pub mod schedule;
+pub mod showcase;
+pub mod size_study;
+pub mod train;
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use clap::{Args, ValueEnum};
+use sky_core::geom::{Equirect, Extent};
+
+use crate::args::finite;
+use crate::sources::{self, ModelKind, ParamError, SkyParams};
+
+/// The arguments that select one sky.
+#[derive(Args, Clone)]
+pub struct SkyArgs {
+    /// The sky model.
+    #[arg(long, value_enum, default_value_t = ModelKind::Preetham)]
+    model: ModelKind,
+    /// Sun zenith angle in degrees (0 = overhead, 90 = on the horizon). Required for preetham;
+    /// for aoas it replaces the style's day cycle.
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true)]
+    sun_zenith: Option<f64>,
+    /// Sun azimuth in degrees, measured from +x towards +y (any finite value; default 0).
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = finite)]
+    sun_azimuth: Option<f64>,
+    /// Atmospheric turbidity (preetham: 2 to 6; hosek: 1 to 10; neural: the trained range;
+    /// default 3; not for aoas).
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    turbidity: Option<f64>,
+    /// Weight file of `--model neural` (written by `sky-train train`).
+    #[arg(long, value_name = "FILE")]
+    weights: Option<PathBuf>,
+    /// The style (aoas only): a preset (physical, sunrise, sunset, grey, yellow, blue, coral,
+    /// smiley, heart, turbulent, ambiguous) or a style file in TOML. Default: physical.
+    #[arg(long, value_name = "PRESET|FILE")]
+    style: Option<String>,
+    /// Spherical-harmonics bands, 1 to 7 (sh only; default 7).
+    #[arg(long, value_name = "N")]
+    bands: Option<usize>,
+    /// Leave out the ringing filter of seed 001, eq. 5 (sh only).
+    #[arg(long)]
+    no_ringing_filter: bool,
+}
+
+impl SkyArgs {
+    /// The sky these arguments name.
+    fn source(&self) -> Result<Box<dyn sources::SkySource>> {
+        match (&self.weights, self.model) {
+            (Some(path), ModelKind::Neural) => {
+                let weights = crate::export::read_weights::<12>(path)
+                    .map_err(|e| ParamError(format!("--weights {e:#}")))?;
+                Ok(Box::new(sources::Neural::new(
+                    &weights,
+                    ModelKind::Neural,
+                    &self.params(),
+                )?))
+            }
+            (Some(_), model) => Err(ParamError(format!(
+                "--weights applies to --model neural only, not --model {model}"
+            ))
+            .into()),
+            (None, model) => Ok(sources::build(model, &self.params())?),
+        }
+    }
+
+    fn params(&self) -> SkyParams {
+        SkyParams {
+            sun_zenith_deg: self.sun_zenith,
+            sun_azimuth_deg: self.sun_azimuth,
+            turbidity: self.turbidity,
+            style: self.style.clone(),
+            bands: self.bands,
+            ringing_filter: self.no_ringing_filter.then_some(false),
+        }
+    }
+}
+
+/// The part of the sphere an image covers.
+#[derive(Clone, Copy, ValueEnum)]
+pub enum ExtentArg {
+    /// The whole sphere: height = width / 2, zenith 0..180 deg (the sky is black below).
+    Sphere,
+    /// The upper hemisphere: height = width / 4, zenith 0..90 deg.
+    Hemisphere,
+}
+
+/// The arguments that shape an image.
+#[derive(Args)]
+pub struct ImageArgs {
+    /// Image width in pixels (2 to 16384).
+    #[arg(long, value_name = "W", default_value_t = 1024, value_parser = clap::value_parser!(u32).range(2..=16384))]
+    width: u32,
+    /// Which part of the sphere the image covers.
+    #[arg(long, value_enum, default_value_t = ExtentArg::Sphere)]
+    extent: ExtentArg,
+    /// PNG only: exposure in stops relative to automatic exposure (which maps the mean sky
+    /// luminance to middle grey).
+    #[arg(long, value_name = "EV", default_value_t = 0.0, allow_negative_numbers = true, value_parser = exposure)]
+    exposure: f32,
+}
+
+impl ImageArgs {
+    fn grid(&self) -> Result<Equirect> {
+        let (extent, height) = match self.extent {
+            ExtentArg::Sphere => (Extent::Sphere, self.width / 2),
+            ExtentArg::Hemisphere => (Extent::UpperHemisphere, (self.width / 4).max(1)),
+        };
+        Ok(Equirect::new(self.width, height, extent)?)
+    }
+}
+
+#[allow(clippy::cast_possible_truncation)]
+fn exposure(s: &str) -> Result<f32, String> {
+    match s.parse::<f64>() {
+        Ok(v) if (-30.0..=30.0).contains(&v) => Ok(v as f32),
+        _ => Err("expected a number of stops in [-30, 30]".into()),
+    }
+}

@@ -1,0 +1,65 @@
+//! `sky-train schedule`: a lighting controller's day as CSV.
+
+use std::io::{BufWriter, Write};
+
+use anyhow::Result;
+use clap::Args;
+
+use crate::args::{date, elevation, in_range, latitude, longitude};
+use crate::controller::{ScheduleConfig, schedule};
+
+/// `schedule`'s arguments.
+#[derive(Args)]
+pub struct ScheduleArgs {
+    /// Latitude in degrees, north positive (-90 to 90).
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = latitude)]
+    pub lat: f64,
+    /// Longitude in degrees, east positive (-180 to 180).
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = longitude)]
+    pub lon: f64,
+    /// The UTC date, YYYY-MM-DD (years 1 to 2999).
+    #[arg(long, value_name = "YYYY-MM-DD", value_parser = date)]
+    pub date: (i32, u32, u32),
+    /// Minutes between rows, from 00:00 UTC (1 to 1440).
+    #[arg(long, value_name = "MIN", default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=1440))]
+    pub step: u32,
+    /// Elevation of the site in metres above sea level (-500 to 10000).
+    #[arg(long, value_name = "M", default_value_t = 0.0, allow_negative_numbers = true, value_parser = elevation)]
+    pub elevation: f64,
+    /// Atmospheric turbidity of the clear sky (2 to 6).
+    #[arg(long, value_name = "T", default_value_t = 3.0, value_parser = turbidity)]
+    pub turbidity: f32,
+    /// Horizontal illuminance in lux at which the luminaire gives its full output (1 to 200000).
+    #[arg(long, value_name = "LUX", default_value_t = 10_000.0, value_parser = full_scale_lux)]
+    pub full_scale_lux: f32,
+}
+
+#[allow(clippy::cast_possible_truncation)]
+fn turbidity(s: &str) -> Result<f32, String> {
+    in_range(s, 2.0, 6.0, "a turbidity").map(|v| v as f32)
+}
+
+#[allow(clippy::cast_possible_truncation)]
+fn full_scale_lux(s: &str) -> Result<f32, String> {
+    in_range(s, 1.0, 200_000.0, "an illuminance in lux").map(|v| v as f32)
+}
+
+/// Writes the day's schedule to `output` ([`crate::controller::schedule`]).
+///
+/// # Errors
+/// Bad parameters as a [`crate::args::ParamError`], a failed write.
+pub fn run(args: &ScheduleArgs, output: &mut dyn Write) -> Result<()> {
+    let config = ScheduleConfig {
+        latitude: args.lat,
+        longitude: args.lon,
+        elevation: args.elevation,
+        date: args.date,
+        step_minutes: args.step,
+        turbidity: args.turbidity,
+        full_scale_lux: args.full_scale_lux,
+    };
+    let mut out = BufWriter::new(output);
+    schedule(&config, &mut out)?;
+    out.flush()?;
+    Ok(())
+}
