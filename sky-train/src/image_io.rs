@@ -118,13 +118,28 @@ pub fn write_png(path: &Path, img: &RgbImage, scale: f32) -> Result<()> {
         .flat_map(|p| (*p * scale).to_array())
         .map(encode_8bit)
         .collect();
+    write_png_srgb8(path, width, height, &bytes)
+}
+
+/// Writes `width` × `height` pixels of 8-bit sRGB (`r, g, b` row by row) as PNG, atomically.
+///
+/// # Errors
+/// `bytes` of the wrong length, or a failed write.
+pub fn write_png_srgb8(path: &Path, width: u32, height: u32, bytes: &[u8]) -> Result<()> {
+    if bytes.len() != 3 * width as usize * height as usize {
+        bail!(
+            "{}: {} bytes are not {width} x {height} RGB pixels",
+            path.display(),
+            bytes.len()
+        );
+    }
     write_atomically(path, |file| {
         let mut encoder = png::Encoder::new(BufWriter::new(file), width, height);
         encoder.set_color(png::ColorType::Rgb);
         encoder.set_depth(png::BitDepth::Eight);
         encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
         let mut writer = encoder.write_header()?;
-        writer.write_image_data(&bytes)?;
+        writer.write_image_data(bytes)?;
         writer.finish()?;
         Ok(())
     })

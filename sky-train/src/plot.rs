@@ -1,31 +1,54 @@
-//! A small line chart drawn straight into an [`RgbImage`] (no font or plotting dependency): log
-//! y axis, integer x axis, lines with markers, and labels in a built-in 5 × 7 pixel font.
+//! Line charts drawn by `plotters` (its bitmap backend) and written as PNG: an integer x axis, a
+//! logarithmic y axis, lines with markers, a legend. The text is DejaVu Sans, vendored in
+//! `sky-train/fonts/` with its licence and compiled in (plotters' `ab_glyph` feature), so a
+//! chart looks the same on any machine and needs no system font.
 
-use sky_core::Vec3;
+use std::path::Path;
+use std::sync::OnceLock;
 
-use crate::image_io::RgbImage;
+use anyhow::{Result, anyhow};
+use plotters::prelude::*;
+
+use crate::image_io;
+
+/// The font family name the charts use, registered once from the vendored file.
+const FONT: &str = "sans-serif";
+
+/// DejaVu Sans 2.37 (Bitstream Vera licence, `sky-train/fonts/LICENSE`).
+static FONT_FILE: &[u8] = include_bytes!("../fonts/DejaVuSans.ttf");
+
+fn register_font() -> Result<()> {
+    static REGISTERED: OnceLock<bool> = OnceLock::new();
+    let ok = *REGISTERED
+        .get_or_init(|| plotters::style::register_font(FONT, FontStyle::Normal, FONT_FILE).is_ok());
+    if ok {
+        Ok(())
+    } else {
+        Err(anyhow!("the vendored chart font does not load"))
+    }
+}
 
 /// One line of a chart.
 #[derive(Debug, Clone)]
 pub struct Series {
     /// The legend text.
     pub label: String,
-    /// Linear RGB colour.
-    pub colour: Vec3,
-    /// `(x, y)` points; y must be positive (log axis); others are skipped.
-    pub points: Vec<(f64, f64)>,
+    /// sRGB colour, 8 bits per channel.
+    pub colour: [u8; 3],
+    /// `(x, y)` points; y must be positive and finite (log axis); others are skipped.
+    pub points: Vec<(i32, f64)>,
     /// Square markers (else round).
     pub square: bool,
 }
 
-/// A chart with a logarithmic y axis.
+/// A chart with an integer x axis and a logarithmic y axis.
 #[derive(Debug, Clone)]
 pub struct LogChart {
     /// The title, above the plot.
     pub title: String,
-    /// The x axis label.
+    /// The x axis label, with its unit.
     pub x_label: String,
-    /// The y axis label (written above the axis).
+    /// The y axis label, with its unit.
     pub y_label: String,
     /// Integer x ticks from `x_range.0` to `x_range.1`.
     pub x_range: (i32, i32),
@@ -33,362 +56,197 @@ pub struct LogChart {
     pub series: Vec<Series>,
 }
 
-const SCALE: usize = 2; // font pixels per glyph pixel
-const GLYPH_W: usize = 6 * SCALE; // advance: 5 columns and a gap
-
 impl LogChart {
-    /// Draws the chart into a `width` × `height` image (white background).
-    #[must_use]
-    #[allow(
-        clippy::cast_precision_loss,
-        clippy::cast_possible_truncation,
-        clippy::cast_sign_loss,
-        clippy::cast_possible_wrap
-    )]
-    pub fn draw(&self, width: usize, height: usize) -> RgbImage {
-        let mut img = RgbImage {
-            width,
-            height,
-            pixels: vec![Vec3::ONE; width * height],
-        };
-        let (left, right, top, bottom) = (110usize, 30usize, 70usize, 70usize);
-        let (pw, ph) = (width - left - right, height - top - bottom);
-        let ys = self
+    /// Draws the chart as `width` × `height` 8-bit sRGB pixels, row by row (white background).
+    ///
+    /// # Errors
+    /// A size below 200 × 150 pixels, or a drawing error of plotters.
+    pub fn draw(&self, width: u32, height: u32) -> Result<Vec<u8>> {
+        if width < 200 || height < 150 {
+            return Err(anyhow!(
+                "a chart needs at least 200 x 150 pixels, not {width} x {height}"
+            ));
+        }
+        register_font()?;
+        let mut pixels = vec![255u8; 3 * width as usize * height as usize];
+        {
+            let root = BitMapBackend::with_buffer(&mut pixels, (width, height)).into_drawing_area();
+            root.fill(&WHITE)?;
+            let (lo, hi) = self.y_bounds();
+            let (x0, x1) = self.x_range;
+            let mut chart = ChartBuilder::on(&root)
+                .caption(&self.title, (FONT, 20))
+                .margin(12)
+                .x_label_area_size(48)
+                .y_label_area_size(72)
+                // A quarter step beyond the ends, so that the end markers show whole.
+                .build_cartesian_2d(
+                    f64::from(x0) - 0.25..f64::from(x1) + 0.25,
+                    (lo..hi).log_scale(),
+                )?;
+            chart
+                .configure_mesh()
+                .x_labels(usize::try_from(x1 - x0 + 1).unwrap_or(1))
+                .x_label_formatter(&|v| {
+                    if (v - v.round()).abs() < 1e-6 {
+                        format!("{v:.0}")
+                    } else {
+                        String::new()
+                    }
+                })
+                .x_desc(&self.x_label)
+                .y_desc(&self.y_label)
+                .y_label_formatter(&|v| format!("{v}"))
+                .label_style((FONT, 14))
+                .axis_desc_style((FONT, 16))
+                .light_line_style(WHITE)
+                .draw()?;
+            for s in &self.series {
+                let colour = RGBColor(s.colour[0], s.colour[1], s.colour[2]);
+                let points: Vec<(f64, f64)> = s
+                    .points
+                    .iter()
+                    .filter(|p| p.1 > 0.0 && p.1.is_finite())
+                    .map(|&(x, y)| (f64::from(x), y))
+                    .collect();
+                let line = chart.draw_series(LineSeries::new(
+                    points.iter().copied(),
+                    colour.stroke_width(2),
+                ))?;
+                let swatch = move |(x, y): (i32, i32)| {
+                    PathElement::new(vec![(x - 10, y), (x + 10, y)], colour.stroke_width(2))
+                };
+                if s.square {
+                    line.label(&s.label).legend(move |p| {
+                        EmptyElement::at(p)
+                            + swatch((0, 0))
+                            + Rectangle::new([(-4, -4), (4, 4)], colour.filled())
+                    });
+                    chart.draw_series(points.iter().map(|&p| {
+                        EmptyElement::at(p) + Rectangle::new([(-4, -4), (4, 4)], colour.filled())
+                    }))?;
+                } else {
+                    line.label(&s.label).legend(move |p| {
+                        EmptyElement::at(p)
+                            + swatch((0, 0))
+                            + Circle::new((0, 0), 4, colour.filled())
+                    });
+                    chart
+                        .draw_series(points.iter().map(|&p| Circle::new(p, 4, colour.filled())))?;
+                }
+            }
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::UpperRight)
+                .label_font((FONT, 14))
+                .background_style(WHITE.mix(0.9))
+                .border_style(BLACK)
+                .draw()?;
+            root.present()?;
+        }
+        Ok(pixels)
+    }
+
+    /// Draws the chart and writes it to `path` as PNG (atomically).
+    ///
+    /// # Errors
+    /// As [`draw`](Self::draw), or a failed write.
+    pub fn write_png(&self, path: &Path, width: u32, height: u32) -> Result<()> {
+        let pixels = self.draw(width, height)?;
+        image_io::write_png_srgb8(path, width, height, &pixels)
+    }
+
+    /// The y range: whole decades around the data, one more above for the legend.
+    #[allow(clippy::cast_possible_truncation)] // decade exponents of finite f64
+    fn y_bounds(&self) -> (f64, f64) {
+        let (lo, hi) = self
             .series
             .iter()
             .flat_map(|s| s.points.iter().map(|p| p.1))
-            .filter(|y| *y > 0.0 && y.is_finite());
-        let (lo, hi) = ys.fold((f64::INFINITY, 0.0f64), |(a, b), y| (a.min(y), b.max(y)));
+            .filter(|y| *y > 0.0 && y.is_finite())
+            .fold((f64::INFINITY, 0.0f64), |(a, b), y| (a.min(y), b.max(y)));
         let (d0, d1) = if lo.is_finite() {
             (lo.log10().floor() as i32, hi.log10().ceil() as i32)
         } else {
             (-1, 0)
         };
-        // One decade of headroom above the data for the legend.
-        let d1 = d1.max(d0 + 1) + 1;
-        let (x0, x1) = (f64::from(self.x_range.0), f64::from(self.x_range.1));
-        let px = |x: f64| left as f64 + (x - x0) / (x1 - x0) * pw as f64;
-        let py = |y: f64| top as f64 + (f64::from(d1) - y.log10()) / f64::from(d1 - d0) * ph as f64;
-        let grey = Vec3::splat(0.8);
-        let black = Vec3::ZERO;
-        // Grid and y labels at every decade.
-        for d in d0..=d1 {
-            let y = py(10f64.powi(d)) as usize;
-            line(
-                &mut img,
-                (left as f64, y as f64),
-                ((left + pw) as f64, y as f64),
-                grey,
-                1,
-            );
-            let label = format!("1e{d}");
-            text(
-                &mut img,
-                left - 10 - label.len() * GLYPH_W,
-                y - 7,
-                &label,
-                black,
-            );
+        (10f64.powi(d0), 10f64.powi(d1.max(d0 + 1) + 1))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn chart() -> LogChart {
+        LogChart {
+            title: "test chart".into(),
+            x_label: "bands N".into(),
+            y_label: "error, %".into(),
+            x_range: (1, 7),
+            series: vec![
+                Series {
+                    label: "rising".into(),
+                    colour: [200, 0, 0],
+                    points: (1..=7).map(|x| (x, 10f64.powi(x - 4))).collect(),
+                    square: true,
+                },
+                Series {
+                    label: "flat".into(),
+                    colour: [0, 0, 200],
+                    points: (1..=7).map(|x| (x, 0.5)).collect(),
+                    square: false,
+                },
+            ],
         }
-        for x in self.x_range.0..=self.x_range.1 {
-            let xp = px(f64::from(x));
-            line(&mut img, (xp, top as f64), (xp, (top + ph) as f64), grey, 1);
-            let label = x.to_string();
-            text(
-                &mut img,
-                xp as usize - label.len() * GLYPH_W / 2,
-                top + ph + 10,
-                &label,
-                black,
-            );
-        }
-        // Axes.
-        let (l, r, t, b) = (
-            left as f64,
-            (left + pw) as f64,
-            top as f64,
-            (top + ph) as f64,
+    }
+
+    fn count(pixels: &[u8], colour: [u8; 3]) -> usize {
+        pixels.chunks(3).filter(|p| *p == colour).count()
+    }
+
+    #[test]
+    fn draws_each_series_its_markers_and_text() {
+        let (w, h) = (640u32, 400u32);
+        let pixels = chart().draw(w, h).expect("chart");
+        assert_eq!(pixels.len(), 3 * (w * h) as usize);
+        // Two lines across the plot (2 px wide, ~500 px long) and markers in their colours.
+        assert!(
+            count(&pixels, [200, 0, 0]) > 800,
+            "{}",
+            count(&pixels, [200, 0, 0])
         );
-        for (a, c) in [
-            ((l, t), (l, b)),
-            ((l, b), (r, b)),
-            ((r, t), (r, b)),
-            ((l, t), (r, t)),
-        ] {
-            line(&mut img, a, c, black, 1);
-        }
-        text(
-            &mut img,
-            left + pw / 2 - self.x_label.len() * GLYPH_W / 2,
-            top + ph + 35,
-            &self.x_label,
-            black,
+        assert!(
+            count(&pixels, [0, 0, 200]) > 800,
+            "{}",
+            count(&pixels, [0, 0, 200])
         );
-        text(&mut img, 10, top - 25, &self.y_label, black);
-        text(
-            &mut img,
-            width / 2 - self.title.len() * GLYPH_W / 2,
-            15,
-            &self.title,
-            black,
-        );
-        // Lines, markers and the legend.
-        for (k, s) in self.series.iter().enumerate() {
-            let pts: Vec<(f64, f64)> = s
-                .points
-                .iter()
-                .filter(|p| p.1 > 0.0 && p.1.is_finite())
-                .map(|&(x, y)| (px(x), py(y)))
-                .collect();
-            for w in pts.windows(2) {
-                line(&mut img, w[0], w[1], s.colour, 2);
-            }
-            for &(x, y) in &pts {
-                marker(&mut img, x, y, s.colour, s.square);
-            }
-            let ly = top + 12 + 22 * k;
-            let lx = left + 20;
-            line(
-                &mut img,
-                (lx as f64, ly as f64 + 7.0),
-                (lx as f64 + 30.0, ly as f64 + 7.0),
-                s.colour,
-                2,
-            );
-            marker(
-                &mut img,
-                lx as f64 + 15.0,
-                ly as f64 + 7.0,
-                s.colour,
-                s.square,
-            );
-            text(&mut img, lx + 40, ly, &s.label, black);
-        }
-        img
+        // The title's glyphs: dark pixels in the top band, where no axis is.
+        let top_dark = pixels[..3 * (w * 30) as usize]
+            .chunks(3)
+            .filter(|p| p.iter().all(|&c| c < 128))
+            .count();
+        assert!(top_dark > 50, "{top_dark} dark pixels in the title band");
     }
-}
 
-fn put(img: &mut RgbImage, x: i64, y: i64, c: Vec3) {
-    if let (Ok(x), Ok(y)) = (usize::try_from(x), usize::try_from(y))
-        && x < img.width
-        && y < img.height
-    {
-        img.pixels[y * img.width + x] = c;
+    #[test]
+    fn the_flat_line_is_one_horizontal_band() {
+        let (w, h) = (640u32, 400u32);
+        let pixels = chart().draw(w, h).expect("chart");
+        // The rows the blue line runs along: one band of at most 4 rows (2 px stroke, anti-aliased).
+        let rows: Vec<usize> = (0..h as usize)
+            .filter(|&y| {
+                (0..w as usize)
+                    .filter(|&x| pixels[3 * (y * w as usize + x)..][..3] == [0, 0, 200])
+                    .count()
+                    > 300
+            })
+            .collect();
+        assert!(!rows.is_empty() && rows.len() <= 4, "{rows:?}");
     }
-}
 
-#[allow(clippy::cast_possible_truncation)]
-fn line(img: &mut RgbImage, a: (f64, f64), b: (f64, f64), c: Vec3, thickness: i64) {
-    let steps = ((b.0 - a.0).abs().max((b.1 - a.1).abs()).ceil() as i64).max(1);
-    for i in 0..=steps {
-        #[allow(clippy::cast_precision_loss)]
-        let t = i as f64 / steps as f64;
-        let (x, y) = (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1));
-        for dx in 0..thickness {
-            for dy in 0..thickness {
-                put(img, x.round() as i64 + dx, y.round() as i64 + dy, c);
-            }
-        }
+    #[test]
+    fn refuses_a_tiny_chart() {
+        assert!(chart().draw(100, 100).is_err());
     }
-}
-
-#[allow(clippy::cast_possible_truncation)]
-fn marker(img: &mut RgbImage, x: f64, y: f64, c: Vec3, square: bool) {
-    let (x, y) = (x.round() as i64, y.round() as i64);
-    for dx in -5..=5i64 {
-        for dy in -5..=5i64 {
-            if square || dx * dx + dy * dy <= 25 {
-                put(img, x + dx, y + dy, c);
-            }
-        }
-    }
-}
-
-/// Writes `s` with its top-left corner at (`x`, `y`); unknown characters are left blank.
-#[allow(clippy::cast_possible_wrap)]
-fn text(img: &mut RgbImage, x: usize, y: usize, s: &str, c: Vec3) {
-    for (k, ch) in s.chars().enumerate() {
-        let Some(rows) = glyph(ch) else { continue };
-        for (r, bits) in rows.iter().enumerate() {
-            for (col, b) in bits.bytes().enumerate() {
-                if b == b'#' {
-                    for sy in 0..SCALE {
-                        for sx in 0..SCALE {
-                            put(
-                                img,
-                                (x + k * GLYPH_W + col * SCALE + sx) as i64,
-                                (y + r * SCALE + sy) as i64,
-                                c,
-                            );
-                        }
-                    }
-                }
-            }
-        }
-    }
-}
-
-/// The 5 × 7 bitmap of `ch`, for the characters the charts use.
-#[allow(clippy::too_many_lines)]
-fn glyph(ch: char) -> Option<[&'static str; 7]> {
-    Some(match ch {
-        '0' => [
-            " ### ", "#   #", "#  ##", "# # #", "##  #", "#   #", " ### ",
-        ],
-        '1' => [
-            "  #  ", " ##  ", "  #  ", "  #  ", "  #  ", "  #  ", " ### ",
-        ],
-        '2' => [
-            " ### ", "#   #", "    #", "   # ", "  #  ", " #   ", "#####",
-        ],
-        '3' => [
-            "#####", "   # ", "  #  ", "   # ", "    #", "#   #", " ### ",
-        ],
-        '4' => [
-            "   # ", "  ## ", " # # ", "#  # ", "#####", "   # ", "   # ",
-        ],
-        '5' => [
-            "#####", "#    ", "#### ", "    #", "    #", "#   #", " ### ",
-        ],
-        '6' => [
-            "  ## ", " #   ", "#    ", "#### ", "#   #", "#   #", " ### ",
-        ],
-        '7' => [
-            "#####", "    #", "   # ", "  #  ", " #   ", " #   ", " #   ",
-        ],
-        '8' => [
-            " ### ", "#   #", "#   #", " ### ", "#   #", "#   #", " ### ",
-        ],
-        '9' => [
-            " ### ", "#   #", "#   #", " ####", "    #", "   # ", " ##  ",
-        ],
-        '-' => [
-            "     ", "     ", "     ", "#####", "     ", "     ", "     ",
-        ],
-        '.' => [
-            "     ", "     ", "     ", "     ", "     ", " ##  ", " ##  ",
-        ],
-        ',' => [
-            "     ", "     ", "     ", "     ", " ##  ", "  #  ", " #   ",
-        ],
-        ':' => [
-            "     ", " ##  ", " ##  ", "     ", " ##  ", " ##  ", "     ",
-        ],
-        '%' => [
-            "##   ", "##  #", "   # ", "  #  ", " #   ", "#  ##", "   ##",
-        ],
-        '(' => [
-            "   # ", "  #  ", " #   ", " #   ", " #   ", "  #  ", "   # ",
-        ],
-        ')' => [
-            " #   ", "  #  ", "   # ", "   # ", "   # ", "  #  ", " #   ",
-        ],
-        '=' => [
-            "     ", "     ", "#####", "     ", "#####", "     ", "     ",
-        ],
-        ' ' => ["     "; 7],
-        'E' => [
-            "#####", "#    ", "#    ", "#### ", "#    ", "#    ", "#####",
-        ],
-        'H' => [
-            "#   #", "#   #", "#   #", "#####", "#   #", "#   #", "#   #",
-        ],
-        'N' => [
-            "#   #", "#   #", "##  #", "# # #", "#  ##", "#   #", "#   #",
-        ],
-        'P' => [
-            "#### ", "#   #", "#   #", "#### ", "#    ", "#    ", "#    ",
-        ],
-        'S' => [
-            " ####", "#    ", "#    ", " ### ", "    #", "    #", "#### ",
-        ],
-        'a' => [
-            "     ", "     ", " ### ", "    #", " ####", "#   #", " ####",
-        ],
-        'b' => [
-            "#    ", "#    ", "# ## ", "##  #", "#   #", "#   #", "#### ",
-        ],
-        'c' => [
-            "     ", "     ", " ### ", "#    ", "#    ", "#   #", " ### ",
-        ],
-        'd' => [
-            "    #", "    #", " ## #", "#  ##", "#   #", "#   #", " ####",
-        ],
-        'e' => [
-            "     ", "     ", " ### ", "#   #", "#####", "#    ", " ### ",
-        ],
-        'f' => [
-            "  ## ", " #  #", " #   ", "###  ", " #   ", " #   ", " #   ",
-        ],
-        'g' => [
-            "     ", " ####", "#   #", "#   #", " ####", "    #", " ### ",
-        ],
-        'h' => [
-            "#    ", "#    ", "# ## ", "##  #", "#   #", "#   #", "#   #",
-        ],
-        'i' => [
-            "  #  ", "     ", " ##  ", "  #  ", "  #  ", "  #  ", " ### ",
-        ],
-        'l' => [
-            " ##  ", "  #  ", "  #  ", "  #  ", "  #  ", "  #  ", " ### ",
-        ],
-        'm' => [
-            "     ", "     ", "## # ", "# # #", "# # #", "#   #", "#   #",
-        ],
-        'n' => [
-            "     ", "     ", "# ## ", "##  #", "#   #", "#   #", "#   #",
-        ],
-        'o' => [
-            "     ", "     ", " ### ", "#   #", "#   #", "#   #", " ### ",
-        ],
-        'p' => [
-            "     ", "#### ", "#   #", "#   #", "#### ", "#    ", "#    ",
-        ],
-        'r' => [
-            "     ", "     ", "# ## ", "##  #", "#    ", "#    ", "#    ",
-        ],
-        's' => [
-            "     ", "     ", " ####", "#    ", " ### ", "    #", "#### ",
-        ],
-        't' => [
-            " #   ", " #   ", "###  ", " #   ", " #   ", " #  #", "  ## ",
-        ],
-        'u' => [
-            "     ", "     ", "#   #", "#   #", "#   #", "#  ##", " ## #",
-        ],
-        'v' => [
-            "     ", "     ", "#   #", "#   #", "#   #", " # # ", "  #  ",
-        ],
-        'w' => [
-            "     ", "     ", "#   #", "#   #", "# # #", "# # #", " # # ",
-        ],
-        'x' => [
-            "     ", "     ", "#   #", " # # ", "  #  ", " # # ", "#   #",
-        ],
-        'y' => [
-            "     ", "     ", "#   #", "#   #", " ####", "    #", " ### ",
-        ],
-        'z' => [
-            "     ", "     ", "#####", "   # ", "  #  ", " #   ", "#####",
-        ],
-        'k' => [
-            "#    ", "#    ", "#  # ", "# #  ", "##   ", "# #  ", "#  # ",
-        ],
-        'T' => [
-            "#####", "  #  ", "  #  ", "  #  ", "  #  ", "  #  ", "  #  ",
-        ],
-        'R' => [
-            "#### ", "#   #", "#   #", "#### ", "# #  ", "#  # ", "#   #",
-        ],
-        'G' => [
-            " ### ", "#   #", "#    ", "# ###", "#   #", "#   #", " ####",
-        ],
-        'B' => [
-            "#### ", "#   #", "#   #", "#### ", "#   #", "#   #", "#### ",
-        ],
-        '_' => [
-            "     ", "     ", "     ", "     ", "     ", "     ", "#####",
-        ],
-        _ => return None,
-    })
 }

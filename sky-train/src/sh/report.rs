@@ -104,57 +104,53 @@ pub fn markdown(fit: &ShFit, report: &ErrorReport) -> String {
     s
 }
 
-/// The chart of the worst E_mean and E_max per band count (like the paper's Fig. 3), with the
-/// same for a second fit (`paper`: the paper's uniform degrees) in lighter colours.
+/// The chart of the worst E_mean and E_max per band count (like the paper's Fig. 3), in
+/// percent, with the same for a second fit (`paper`: the paper's uniform degrees) in lighter
+/// colours.
 #[must_use]
-pub fn chart(fit: &ShFit, report: &ErrorReport, paper: Option<&ErrorReport>) -> RgbImage {
+pub fn chart(fit: &ShFit, report: &ErrorReport, paper: Option<&ErrorReport>) -> LogChart {
     LogChart {
         title: format!(
-            "{} SH: highest relative error, all channels",
+            "{} sky in SH: worst relative error over sun zenith and turbidity",
             title_case(&fit.config.model.to_string())
         ),
-        x_label: "bands N".into(),
-        y_label: "relative error".into(),
+        x_label: "SH bands N (N\u{b2} coefficients per channel)".into(),
+        y_label: "relative error, % (max over R, G, B)".into(),
         x_range: (1, 7),
         series: paper
             .into_iter()
             .flat_map(|p| {
                 pair(
                     p,
-                    " (13,7)",
-                    Vec3::new(1.0, 0.45, 0.3),
-                    Vec3::new(0.35, 0.6, 1.0),
+                    ", the paper's degrees (13, 7)",
+                    [255, 178, 149],
+                    [159, 203, 255],
                 )
             })
             .chain(pair(
                 report,
-                "",
-                Vec3::new(0.8, 0.05, 0.02),
-                Vec3::new(0.02, 0.1, 0.8),
+                ", shipped tables",
+                [231, 63, 28],
+                [28, 89, 231],
             ))
             .collect(),
     }
-    .draw(720, 480)
 }
 
-/// The E_max and E_mean series of `report`, labelled with `suffix`.
-#[allow(clippy::cast_precision_loss)]
-fn pair(report: &ErrorReport, suffix: &str, max: Vec3, mean: Vec3) -> [Series; 2] {
-    let points = |v: &[(f64, (f64, f64)); BANDS]| -> Vec<(f64, f64)> {
-        v.iter()
-            .enumerate()
-            .map(|(n, e)| ((n + 1) as f64, e.0))
-            .collect()
+/// The E_max and E_mean series of `report` in percent, labelled with `suffix`.
+fn pair(report: &ErrorReport, suffix: &str, max: [u8; 3], mean: [u8; 3]) -> [Series; 2] {
+    let points = |v: &[(f64, (f64, f64)); BANDS]| -> Vec<(i32, f64)> {
+        (1..).zip(v).map(|(n, e)| (n, 100.0 * e.0)).collect()
     };
     [
         Series {
-            label: format!("E max{suffix}"),
+            label: format!("E_max, eq. 2{suffix}"),
             colour: max,
             points: points(&report.worst.max),
             square: true,
         },
         Series {
-            label: format!("E mean{suffix}"),
+            label: format!("E_mean, eq. 3{suffix}"),
             colour: mean,
             points: points(&report.worst.mean),
             square: false,
@@ -275,7 +271,7 @@ pub fn write(
     }
     image_io::write_text(&md, &text)?;
     let png = dir.join("sh_errors.png");
-    image_io::write_png(&png, &chart(fit, &report, paper_report.as_ref()), 1.0)?;
+    chart(fit, &report, paper_report.as_ref()).write_png(&png, 800, 500)?;
     let mut paths = vec![md, png];
     paths.extend(renders(fit, &report, dir)?);
     Ok((report, paper_report, paths))
