@@ -3,6 +3,7 @@
 # microcontroller and wasm32, and the firmware examples agree with the host under qemu: the f32
 # skies on a Cortex-M4F (mps2-an386), the fixed-point neural sky on a Cortex-M3 (lm3s6965evb)
 # and a Cortex-M0 (microbit), and the lighting controller's day on all three.
+# The sensor-driven controller day runs on the Cortex-M4F and the Cortex-M3.
 #
 # Then it counts the lighting controller's executed instructions per step on the three cores,
 # under qemu's -icount (firmware/src/bin/controller_instructions.rs): `scripts/cross.sh
@@ -93,10 +94,14 @@ for target in "${targets[@]}"; do target_args+=(--target "$target"); done
 (cd "$root" && cargo build -p sky-core --lib --release "${target_args[@]}" \
   --config "$cross_config" --target-dir "$target_dir")
 
+step "sky-core: build with the defmt feature for thumbv7em-none-eabihf"
+(cd "$root" && cargo build -p sky-core --lib --release --features defmt \
+  --target thumbv7em-none-eabihf --config "$cross_config" --target-dir "$target_dir")
+
 # Each run: target, board (qemu machine and CPU), binary. The target picks the board's memory
 # map in firmware/build.rs; every binary checks its values against the host's and exits 0 or 1.
 # A fourth field names firmware features: the micromath build goes to its own target folder,
-# for its size next to the default one (README, "Without an FPU").
+# for its size next to the default one (docs/firmware.md, "Flash and RAM").
 runs=(
   "thumbv7em-none-eabihf mps2-an386 cortex-m4 sky-firmware"            # Preetham and neural, f32
   "thumbv7em-none-eabihf mps2-an386 cortex-m4 sky-firmware micromath"  # the same, micromath
@@ -105,6 +110,8 @@ runs=(
   "thumbv7em-none-eabihf mps2-an386 cortex-m4 controller"              # controller's day, FPU
   "thumbv7m-none-eabi lm3s6965evb cortex-m3 controller"                # the same, soft float
   "thumbv6m-none-eabi microbit cortex-m0 controller"                   # the same, ARMv6-M
+  "thumbv7em-none-eabihf mps2-an386 cortex-m4 weather-controller"      # sensor-driven day, FPU
+  "thumbv7m-none-eabi lm3s6965evb cortex-m3 weather-controller"        # the same, soft float
 )
 for run in "${runs[@]}"; do
   read -r target machine cpu bin features <<<"$run"

@@ -3,13 +3,15 @@
 #   host:  fmt, clippy (-D warnings), rustdoc (-D warnings), all workspace tests and doctests
 #          (among them sky-train/tests/module_graph.rs: sky-train's modules import without cycles),
 #          the micromath accuracy test with sky-core's `micromath` feature on,
-#          20 s of fuzzing the neural weight-file decoder
+#          20 s of fuzzing the neural weight-file decoder, the sh blocks of README.md and docs/
+#          (scripts/doc-blocks.sh; their Rust blocks are doctests of tests/src/lib.rs)
 #   cross: sky-core for thumbv7em / riscv32imac / wasm32 without std or alloc, and the firmware
 #          examples under qemu (Cortex-M4F; fixed point on Cortex-M3 and M0) checked against
 #          host-computed values
 #   wasm:  sky-wasm built for wasm32, its wasm-bindgen tests in node (parity with native sky-core,
-#          errors, images), node tests of its JavaScript surface and the demo's browser tests in
-#          Debian's chromium (scripts/wasm.sh test)
+#          errors, images), node tests of its JavaScript surface, the demos' browser tests and
+#          every GPU shader against sky-core (WebGL2 and WebGPU on SwiftShader) in Debian's
+#          chromium, and the npm tarball installed into a scratch project (scripts/wasm.sh test)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
@@ -34,8 +36,19 @@ cargo test --workspace --locked
 step "sky-core's micromath feature: each model's error against its f64 reference"
 cargo test --locked -p sky-tests --features micromath --test micromath
 
+step "sky-core's examples run"
+for example in preetham controller; do
+  cargo run --locked -q -p sky-core --example "$example" >/dev/null
+done
+
+step "cargo publish --dry-run: sky-core and sky-train package and build from their packaged sources"
+cargo publish --workspace --dry-run --locked --allow-dirty
+
 step "fuzz the weight-file decoder (bounded time)"
 cargo run --release --locked -q -p sky-train -- fuzz-weights --seconds 20
+
+step "the sh and toml blocks of README.md and docs/ run as written"
+scripts/doc-blocks.sh
 
 step "cross targets and firmware under qemu"
 scripts/cross.sh

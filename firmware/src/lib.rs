@@ -12,7 +12,7 @@
 use core::panic::PanicInfo;
 
 use cortex_m_rt::{ExceptionFrame, exception};
-use cortex_m_semihosting::{debug, heprintln};
+use cortex_m_semihosting::{debug, heprintln, hprintln};
 
 /// Ends the run: exit status 0 under qemu if `passed`, 1 otherwise.
 pub fn finish(passed: bool) -> ! {
@@ -22,6 +22,22 @@ pub fn finish(passed: bool) -> ! {
         debug::EXIT_FAILURE
     });
     halt()
+}
+
+/// Ends a controller example: `outcome` is the number of steps that differed from the host's and
+/// the number of steps, or the error that stopped the run; either is printed, and the run passes
+/// only if no step differed.
+pub fn finish_steps(example: &str, outcome: Result<(usize, usize), sky_core::SkyError>) -> ! {
+    match outcome {
+        Ok((failures, steps)) => {
+            hprintln!("{} of {} steps differ from the host", failures, steps);
+            finish(failures == 0)
+        }
+        Err(error) => {
+            hprintln!("{}: FAIL: {}", example, error);
+            finish(false)
+        }
+    }
 }
 
 /// Waits forever (reached only if the debugger resumes after an exit request).

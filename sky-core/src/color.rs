@@ -9,6 +9,7 @@ use crate::math;
 
 /// A colour as CIE 1931 chromaticity `x, y` and luminance `Y`.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Xyy {
     /// Chromaticity x.
     pub x: f32,

@@ -7,6 +7,7 @@ use core::fmt;
 /// Every constructor in the crate validates its parameters and returns this error; evaluation
 /// after construction cannot fail.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum SkyError {
     /// A parameter that may take any finite value (such as an azimuth) is NaN or infinite.

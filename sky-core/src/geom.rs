@@ -117,6 +117,7 @@ impl Sun {
 
 /// Which part of the sphere an equirectangular grid covers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Extent {
     /// The upper hemisphere, zenith angle 0 to π/2 from the top row to the bottom row (seed 002,
     /// eqs. 20-21).
@@ -140,6 +141,7 @@ pub enum Extent {
 /// # Ok::<(), sky_core::SkyError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Equirect {
     width: u32,
     height: u32,
@@ -256,5 +258,18 @@ impl Equirect {
         let i = math::floor(azimuth / TAU * self.width as f32) as u32;
         let j = math::floor(v * self.height as f32) as u32;
         Some((i.min(self.width - 1), j.min(self.height - 1)))
+    }
+}
+
+/// `Sun { zenith, azimuth }` in radians (its direction vector is derived from them).
+#[cfg(feature = "defmt")]
+impl defmt::Format for Sun {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::write!(
+            f,
+            "Sun {{ zenith: {=f32} rad, azimuth: {=f32} rad }}",
+            self.zenith(),
+            self.azimuth()
+        );
     }
 }

@@ -28,6 +28,7 @@ use crate::math;
 
 /// One channel: the chromaticity of its light and its luminous output at full drive.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Channel {
     /// CIE 1931 chromaticity x.
     pub x: f32,
@@ -67,6 +68,7 @@ impl Channel {
 
 /// The levels for one target.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Drive<const N: usize> {
     /// Each channel's level in [0, 1], in the order the luminaire was built with.
     pub levels: [f32; N],

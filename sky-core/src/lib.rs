@@ -43,6 +43,8 @@
 //! | neural sky: a 6-H-3 network (492 bytes of weights at H = 12) | [`NeuralSky`] | Satilmis et al., *A Machine Learning Driven Sky Model* (seed 000, eqs. 4-10) |
 //! | spherical-harmonics lighting of the Preetham sky, from polynomial tables | [`sh::ShSky`] | Habel, Mustata, Wimmer 2008 (seed 001, eqs. 1-5); Ramamoorthi, Hanrahan 2001 |
 //! | single-scattering skydome with aesthetic principles (AOAS) | [`AoasSky`] | seed 004, eqs. 1-8; O'Neil, "Accurate Atmospheric Scattering", GPU Gems 2 ch. 16 |
+//! | the 15 CIE standard general skies, overcast to cloudless (relative luminance, scaled to a zenith luminance or a diffuse illuminance) | [`CieSky`] | ISO 15469:2004 / CIE S 011/E:2003 |
+//! | the Perez all-weather sky driven by measured irradiance (sky clearness ε, brightness Δ) | [`PerezSky`] | Perez, Seals, Michalsky 1993; Perez et al. 1990 |
 //!
 //! ```
 //! use sky_core::aoas::{AoasSky, Preset, Scattering, Style};
@@ -64,7 +66,10 @@
 //! | correlated colour temperature and Duv (ANSI C78.377 sign) | [`cct`] |
 //! | the sky at any sun elevation, twilight and night included | [`twilight::Daylight`] |
 //! | LED channel levels (RGB, RGBW, warm + cool white), hue-keeping gamut clipping, PWM quantisation | [`led`] |
-//! | all of these for one time and place, as `sky-train schedule` and the firmware compute it | [`controller::step`] |
+//! | all of these for one time and place, as `sky-train schedule` and the firmware compute it, optionally driven by an outdoor sensor | [`controller::step`] |
+//! | W/m² to lux (Perez 1990 global, diffuse and direct efficacy) | [`efficacy`] |
+//! | a global reading split into diffuse and direct (Erbs et al. 1982) | [`decomposition`] |
+//! | the colour of daylight from clear to overcast | [`overcast`] |
 //!
 //! ```
 //! use sky_core::solar::{Site, SunPosition, UtcTime};
@@ -97,6 +102,10 @@
 //!   channel (libm: 4.3e-6), neural 1.7e-2 (libm: 8.2e-4), AOAS 1.1e-2 more than 10° from the
 //!   sun but up to 0.53 within 2-10° of it (libm: 1.2e-4), held by `tests/tests/micromath.rs`.
 //!   Per-direction code is the same in both builds.
+//! * **`defmt`** (off by default): `defmt::Format` for the public errors, parameters and
+//!   results ([`SkyError`], [`Sun`], [`color::Xyy`], [`cct::Cct`], [`solar::UtcTime`],
+//!   [`solar::Site`], …), for firmware that logs with `defmt`; not for the sky states, which
+//!   hold glam vectors. Additive: it changes no value.
 //!
 //! Parts without an FPU evaluate the neural sky in integers with
 //! [`neural::FixedNeuralSky`] (the firmware checks it on a Cortex-M3 and a Cortex-M0).
@@ -114,13 +123,19 @@
 
 pub mod aoas;
 pub mod cct;
+pub mod cie;
 pub mod color;
 pub mod controller;
+pub mod decomposition;
+pub mod efficacy;
 mod error;
 pub mod geom;
 pub mod led;
 mod math;
+pub mod measurement;
 pub mod neural;
+pub mod overcast;
+pub mod perez;
 pub mod photometry;
 pub mod preetham;
 pub mod sh;
@@ -128,9 +143,11 @@ pub mod solar;
 pub mod twilight;
 
 pub use aoas::AoasSky;
+pub use cie::CieSky;
 pub use error::SkyError;
 pub use geom::Sun;
 pub use glam::Vec3;
 pub use neural::NeuralSky;
+pub use perez::PerezSky;
 pub use photometry::Photometry;
 pub use preetham::PreethamSky;

@@ -75,6 +75,19 @@ pub(crate) fn powf(x: f32, y: f32) -> f32 {
     libm::powf(x, y)
 }
 
+/// e^x from libm, whatever the backend (for what is computed once per sky or per
+/// measurement; the per-direction [`exp`] is the polynomial kernel below).
+#[inline]
+pub(crate) fn exp_libm(x: f32) -> f32 {
+    libm::expf(x)
+}
+
+/// The natural logarithm from libm, whatever the backend.
+#[inline]
+pub(crate) fn ln(x: f32) -> f32 {
+    libm::logf(x)
+}
+
 /// atan2(y, x) of the backend (libm or micromath), for what is computed once; the per-direction
 /// [`atan2`] is the polynomial kernel below.
 #[inline]

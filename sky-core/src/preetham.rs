@@ -23,14 +23,15 @@ pub const MAX_TURBIDITY: f32 = 6.0;
 
 /// cos θ is clamped to at least this, so e^{B / cos θ} stays finite (it is 0 in f32 well before:
 /// |B| ≥ 0.13 over the valid turbidities, and e^{-0.13e6} underflows).
-const MIN_COS_THETA: f32 = 1e-6;
+pub const MIN_COS_THETA: f32 = 1e-6;
 
 /// Views down to this far below the horizon (in cos θ, ≈ radians) still count as on the horizon:
 /// the f32 nearest π/2 lies 4.4e-8 rad past it, and a view "at the horizon" should not go dark.
-const HORIZON_TOLERANCE: f32 = 1e-6;
+pub const HORIZON_TOLERANCE: f32 = 1e-6;
 
 /// The five Perez coefficients A-E of one channel (seed 002, eq. 10).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct PerezCoefficients {
     /// Darkening or brightening of the horizon.
     pub a: f32,
@@ -152,6 +153,20 @@ fn zenith_chromaticity(m: &[[f32; 4]; 3], t: f32, sun_zenith: f32) -> f32 {
     sum
 }
 
+/// What [`PreethamSky`]'s per-direction kernel reads besides the sun direction
+/// ([`PreethamSky::kernel_constants`]).
+///
+/// Channel c of a direction (Y, x, y for c = 0, 1, 2) is
+/// `scale[c] · (1 + A 2^{B' / cos θ}) (1 + C 2^{D' γ} + E cos² γ)` with the coefficients of
+/// `perez_log2[c]`, whose B' and D' are eq. 10's B and D times log₂e (e^{B u} = 2^{(B log₂e) u}).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KernelConstants {
+    /// The Perez coefficients of Y, x and y, B and D multiplied by log₂e.
+    pub perez_log2: [PerezCoefficients; 3],
+    /// Zenith value / F(0, θs) per channel (Y in cd/m², x, y): the factors of eqs. 11-12.
+    pub scale: [f32; 3],
+}
+
 /// The Preetham clear sky for one sun position and turbidity.
 ///
 /// Construct it once per sun and atmosphere with [`PreethamSky::new`]; then evaluate any number
@@ -247,6 +262,16 @@ impl PreethamSky {
     #[must_use]
     pub fn perez_coefficients(&self) -> [PerezCoefficients; 3] {
         self.perez
+    }
+
+    /// The constants of the per-direction kernel, exactly as [`xyy`](Self::xyy) uses them: for
+    /// GPU shaders (sky-gpu) that evaluate eqs. 10-12 with these values as uniforms.
+    #[must_use]
+    pub fn kernel_constants(&self) -> KernelConstants {
+        KernelConstants {
+            perez_log2: self.perez_log2,
+            scale: self.scale,
+        }
     }
 
     /// Luminance (cd/m²) and chromaticity towards `dir`, eqs. 11-12.

@@ -23,9 +23,11 @@ use solar_positioning::{Location, RefractionCorrection, SolarPositions, delta_t}
 
 use crate::error::SkyError;
 use crate::geom::Sun;
+use crate::math;
 
 /// A UTC instant in the proleptic Gregorian calendar, validated.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct UtcTime {
     year: i32,
     month: u32,
@@ -113,6 +115,21 @@ impl UtcTime {
         })
     }
 
+    /// The day of the year, 1 (1 January) to 365 or 366.
+    ///
+    /// ```
+    /// use sky_core::solar::UtcTime;
+    /// assert_eq!(UtcTime::new(2024, 12, 31, 0, 0, 0.0)?.day_of_year(), 366);
+    /// # Ok::<(), sky_core::SkyError>(())
+    /// ```
+    #[must_use]
+    pub fn day_of_year(&self) -> u32 {
+        (1..self.month)
+            .map(|m| days_in_month(self.year, m))
+            .sum::<u32>()
+            + self.day
+    }
+
     /// The year.
     #[must_use]
     pub fn year(&self) -> i32 {
@@ -152,6 +169,7 @@ impl UtcTime {
 
 /// A place on the Earth: geodetic latitude and longitude in degrees, elevation in metres.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Site {
     latitude: f64,
     longitude: f64,
@@ -336,6 +354,53 @@ impl SunPosition {
 pub fn compass_to_azimuth(compass_deg: f64) -> f64 {
     let phi = libm::fmod(90.0 - compass_deg, 360.0);
     if phi < 0.0 { phi + 360.0 } else { phi }
+}
+
+/// The solar constant, W/m²: the value of the World Radiation Centre that Perez et al. 1990
+/// and Erbs et al. 1982 worked with (and Radiance's gendaylit and gendaymtx use).
+pub const SOLAR_CONSTANT: f32 = 1367.0;
+
+/// The extraterrestrial irradiance on a plane facing the sun, W/m², on day `day_of_year`
+/// (1-366; other values wrap): [`SOLAR_CONSTANT`] times the eccentricity correction
+/// (R₀/R)² of Spencer's Fourier series (Spencer, *Fourier series representation of the position
+/// of the sun*, Search 2(5), 1971), with the day angle Γ = 2π (n − 1) / 365:
+/// 1.000110 + 0.034221 cos Γ + 0.001280 sin Γ + 0.000719 cos 2Γ + 0.000077 sin 2Γ.
+/// Between 1322 W/m² (early July) and 1415 W/m² (early January).
+///
+/// ```
+/// let january = sky_core::solar::extraterrestrial_irradiance(3);
+/// assert!((january - 1415.0).abs() < 1.0);
+/// ```
+#[must_use]
+#[allow(clippy::cast_precision_loss)] // day numbers are small
+pub fn extraterrestrial_irradiance(day_of_year: u32) -> f32 {
+    let gamma = core::f32::consts::TAU * (day_of_year.saturating_sub(1) % 366) as f32 / 365.0;
+    let (s1, c1) = (math::sin(gamma), math::cos(gamma));
+    let (s2, c2) = (2.0 * s1 * c1, c1 * c1 - s1 * s1);
+    SOLAR_CONSTANT * (1.000_11 + 0.034_221 * c1 + 0.001_280 * s1 + 0.000_719 * c2 + 0.000_077 * s2)
+}
+
+/// The relative optical air mass at sun zenith angle `zenith` (radians), by Kasten's formula
+/// (Kasten, *A new table and approximation formula for the relative optical air mass*, Arch.
+/// Meteorol. Geophys. Bioklimatol. B 14, 1966), the one Perez et al. 1990 use:
+/// m = 1 / (cos Z + 0.15 (93.885 − Z°)^−1.253). 1 at the zenith, 36.5 with the sun on the
+/// horizon; the zenith is clamped to [0°, 90°] (NaN gives the horizon's value), so the result is
+/// always finite.
+///
+/// ```
+/// let m = sky_core::solar::relative_air_mass(60f32.to_radians());
+/// assert!((m - 1.993).abs() < 0.001);
+/// ```
+#[must_use]
+pub fn relative_air_mass(zenith: f32) -> f32 {
+    let z = if zenith >= 0.0 {
+        zenith.min(core::f32::consts::FRAC_PI_2)
+    } else if zenith < 0.0 {
+        0.0
+    } else {
+        core::f32::consts::FRAC_PI_2
+    };
+    1.0 / (math::cos(z) + 0.15 * math::powf(93.885 - z.to_degrees(), -1.253))
 }
 
 #[cfg(test)]

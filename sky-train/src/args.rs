@@ -95,6 +95,17 @@ pub fn finite(s: &str) -> Result<f64, String> {
     }
 }
 
+/// Any finite number at least 0.
+///
+/// # Errors
+/// Not a number, infinite or negative.
+pub fn non_negative(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 0.0 => Ok(v),
+        _ => Err("expected a finite number, at least 0".into()),
+    }
+}
+
 /// A latitude in degrees, north positive (-90 to 90).
 ///
 /// # Errors

@@ -49,7 +49,8 @@ pub enum Command {
     /// Evaluate a neural sky on seed 000's test protocol: Tables 1 and 2 beside the paper's,
     /// and reference / network / difference images like Figs. 6-7.
     Eval(EvalArgs),
-    /// Write the Rust source of a weight file for compile-time embedding in sky-core.
+    /// Write the Rust source of a weight file for compile-time embedding in sky-core, or a sky
+    /// model's GPU shader (GLSL ES 3.00 or WGSL, sky-gpu) or sky-wasm's module of them all.
     Export(ExportArgs),
     /// Seed 000's 6-12-3 network against 6-6-3, 6-24-3, 6-48-3 and 6-12-12-3, each trained the
     /// same way: mean NRMSE and irradiance on the paper's protocol, bytes, ns/direction (a

@@ -227,6 +227,62 @@ impl Sky {
         })
     }
 
+    /// The spherical-harmonics lighting of [`sh`](Self::sh) without the ringing filter of
+    /// seed 001, eq. 5: the plain fitted coefficients, whose first three bands are the
+    /// radiance coefficients a three.js `LightProbe` takes (its irradiance needs no filter).
+    ///
+    /// # Errors
+    /// sky-core's message for a parameter out of range.
+    #[wasm_bindgen(js_name = shUnfiltered)]
+    pub fn sh_unfiltered(
+        sun_zenith: f32,
+        sun_azimuth: f32,
+        turbidity: f32,
+        bands: u32,
+    ) -> Result<Sky, JsError> {
+        let sun = Sun::new(sun_zenith, sun_azimuth).map_err(js_error)?;
+        let sky = ShSky::new_unfiltered(sun, turbidity, bands as usize).map_err(js_error)?;
+        Ok(Self {
+            model: Model::Sh(Box::new(sky)),
+            sun,
+        })
+    }
+
+    /// The parameters of this sky's GPU shader (sky-gpu; the texts are the package's
+    /// `shaders.js`, per [`model`](Self::model)): the uniform array `sky_<model>` as 4 floats
+    /// per `vec4`. For an SH sky, the RGB coefficient c_lm is at `4 (l² + l + m)`.
+    ///
+    /// # Errors
+    /// An AOAS style with cloud noise, cloud shapes or ambiguity (the shader has none).
+    #[wasm_bindgen(js_name = shaderParams)]
+    pub fn shader_params(&self) -> Result<Vec<f32>, JsError> {
+        use sky_gpu::models;
+        Ok(match &self.model {
+            Model::Preetham(s) => models::preetham::params(s).to_vec(),
+            Model::Neural(s) => models::neural::params(s),
+            Model::Aoas(s) => models::aoas::params(s).map_err(js_error)?.to_vec(),
+            Model::Sh(s) => models::sh::params(s).to_vec(),
+        })
+    }
+
+    /// The irradiance of an SH sky on a surface whose normal has zenith angle `normal_zenith`
+    /// and azimuth `normal_azimuth` (radians): sky-core's `ShSky::irradiance`, linear sRGB on
+    /// the sky's radiance scale times steradians (lux scale for Preetham).
+    ///
+    /// # Errors
+    /// A sky that is not an SH sky.
+    pub fn irradiance(&self, normal_zenith: f32, normal_azimuth: f32) -> Result<Vec<f32>, JsError> {
+        match &self.model {
+            Model::Sh(s) => Ok(s
+                .irradiance(geom::direction(normal_zenith, normal_azimuth))
+                .to_array()
+                .to_vec()),
+            _ => Err(JsError::new(
+                "irradiance is defined for SH skies (Sky.sh, Sky.shUnfiltered)",
+            )),
+        }
+    }
+
     /// The model's name: "preetham", "neural", "aoas" or "sh".
     #[wasm_bindgen(getter)]
     #[must_use]
@@ -265,6 +321,22 @@ impl Sky {
             .to_vec()
     }
 
+    /// Linear RGB at many view directions: `dirs` holds x, y, z per direction (sky-core's
+    /// frame, +z up; any length), the result r, g, b per direction in the model's units
+    /// (sky-core's `rgb_batch`, the values [`rgb`](Self::rgb) gives). A trailing partial
+    /// triple is ignored.
+    #[wasm_bindgen(js_name = rgbBatch)]
+    #[must_use]
+    pub fn rgb_batch(&self, dirs: &[f32]) -> Vec<f32> {
+        let dirs: Vec<Vec3> = dirs
+            .chunks_exact(3)
+            .map(|d| Vec3::new(d[0], d[1], d[2]))
+            .collect();
+        let mut rgb = vec![Vec3::ZERO; dirs.len()];
+        self.model.rgb_batch(&dirs, &mut rgb);
+        rgb.iter().flat_map(|c| c.to_array()).collect()
+    }
+
     /// The exposure (a factor on linear RGB) that maps this sky's mean luminance over the upper
     /// hemisphere to middle grey (0.18), as `sky-train render` exposes PNGs; 1 for a black sky.
     #[wasm_bindgen(js_name = autoExposure)]
@@ -286,7 +358,7 @@ impl Sky {
     }
 }
 
-/// The AOAS style presets' names, in the order of the README's strip.
+/// The AOAS style presets' names, in the order of the gallery's strip (`sky-train gallery`, docs/aoas_presets.png).
 #[wasm_bindgen(js_name = aoasPresets)]
 #[must_use]
 pub fn aoas_presets() -> Vec<String> {

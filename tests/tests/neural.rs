@@ -51,7 +51,7 @@ fn neural_hosek_on_the_papers_protocol() {
 }
 
 // The bounds hold what the shipped weights reach, a little above the measured figures (see
-// README "Neural sky"), so that a worse network fails. Of the goals (Preetham NRMSE
+// docs/training.md), so that a worse network fails. Of the goals (Preetham NRMSE
 // 0.007, irradiance 0.1 %; Hosek-Wilkie NRMSE 0.020, irradiance 2 %) only the Hosek-Wilkie
 // irradiance is reached, and its bound is the goal's; seed 000's own figures are 0.0145 / 0.26 %
 // (Preetham) and 0.0395 / 4.5 % (Hosek-Wilkie).

@@ -117,7 +117,7 @@ fn run(counts: &mut [Counts; 6], per_instruction: f64, empty: u64) -> Result<boo
     let mut same = true;
     for (index, minute) in (0..24 * 60).step_by(STEP_MINUTES as usize).enumerate() {
         let time = UtcTime::new(year, month, day, minute / 60, minute % 60, 0.0)?;
-        let (t_step, whole) = measure(|| step(&time, &site, TURBIDITY, FULL_SCALE_LUX, &lamp));
+        let (t_step, whole) = measure(|| step(&time, &site, TURBIDITY, FULL_SCALE_LUX, &lamp, None));
         let whole = whole?;
         let (t_sun, sun) = measure(|| SunPosition::new(&time, &site));
         let sun = sun?;

@@ -79,7 +79,7 @@ pub const MAX_WAVELENGTH: f32 = 0.78;
 
 /// Views down to this far below the viewer's horizon (in cos θ) still count as on it, as in the
 /// Preetham sky: the f32 nearest π/2 lies 4.4e-8 rad past it.
-const HORIZON_TOLERANCE: f32 = 1e-6;
+pub const HORIZON_TOLERANCE: f32 = 1e-6;
 
 /// Directions evaluated together by the batch path: the lanes of its loops.
 const CHUNK: usize = 32;
@@ -201,13 +201,50 @@ impl Scattering {
 /// makes light from below the horizon vanish and stays finite.
 #[inline(always)]
 fn scale_log2(cos: f32) -> f32 {
-    const C0: f32 = -0.00287 * LOG2_E;
-    const C1: f32 = 0.459 * LOG2_E;
-    const C2: f32 = 3.83 * LOG2_E;
-    const C3: f32 = -6.80 * LOG2_E;
-    const C4: f32 = 5.25 * LOG2_E;
+    let [c0, c1, c2, c3, c4] = SCALE_FIT_LOG2;
     let x = 1.0 - cos;
-    C0 + x * (C1 + x * (C2 + x * (C3 + x * C4)))
+    c0 + x * (c1 + x * (c2 + x * (c3 + x * c4)))
+}
+
+/// The coefficients of O'Neil's optical-depth fit in log₂ units, lowest power first: the
+/// polynomial in x = 1 − cos θ that `scale_log2` evaluates (O'Neil's −0.00287, 0.459, 3.83,
+/// −6.80, 5.25, each times log₂e).
+pub const SCALE_FIT_LOG2: [f32; 5] = [
+    -0.00287 * LOG2_E,
+    0.459 * LOG2_E,
+    3.83 * LOG2_E,
+    -6.80 * LOG2_E,
+    5.25 * LOG2_E,
+];
+
+/// What [`AoasSky`]'s ray march reads ([`AoasSky::kernel_constants`]); lengths in atmosphere
+/// thicknesses, the planet's radius being [`PLANET_RADIUS`] and the scale depth [`SCALE_DEPTH`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KernelConstants {
+    /// Unit apex direction of the viewer (eq. 2).
+    pub apex: Vec3,
+    /// Unit direction towards the sun.
+    pub sun: Vec3,
+    /// The viewer's distance from the planet's centre, R + h.
+    pub camera_radius: f32,
+    /// (R + h)² − R².
+    pub camera_lift: f32,
+    /// (R + 1)² − (R + h)².
+    pub far_lift: f32,
+    /// log₂ of the density at the viewer.
+    pub camera_density_log2: f32,
+    /// sun · apex.
+    pub sun_apex: f32,
+    /// 4π (Kr K_c + Km) log₂e per channel: the extinction in log₂ units.
+    pub extinction_log2: [f32; 3],
+    /// ESun Kr K_c per channel.
+    pub rayleigh: [f32; 3],
+    /// ESun Km.
+    pub mie: f32,
+    /// 1.5 (1 − g²)/(2 + g²), (1 − g)², 2g, (1 − |g|)²: the Mie phase function's constants.
+    pub mie_phase: [f32; 4],
+    /// Ray-marching samples.
+    pub samples: u32,
 }
 
 /// The geometry and start of one view ray, shared by the one-direction and batch paths.
@@ -221,6 +258,8 @@ struct RayStart {
     mu: f32,
     /// cos of the angle between the ray and the sun.
     nu: f32,
+    /// 1 − cos of that angle, as |v − s|²/2: accurate near the sun, where 1 − ν cancels.
+    one_minus_nu: f32,
     /// Length of one ray-marching step, atmosphere thicknesses.
     step: f32,
     /// Optical depth from the viewer to space along the ray (O'Neil's fStartOffset).
@@ -247,8 +286,8 @@ struct RayStart {
 /// xy) and 2.2 % with 64: from 8 samples on it is the error of O'Neil's optical-depth fit, largest
 /// near the horizon. With the sun within 1° of the horizon it reaches 27 % near the horizon away
 /// from the sun, where the planet's shadow, which the fit ignores, falls on the ray. This f32
-/// evaluation agrees with the same approximation in f64 to 5e-4 per channel (2e-3 within 2° of
-/// the sun, where the Mie peak amplifies the rounding of the view direction).
+/// evaluation agrees with the same approximation in f64 to 2e-5 per channel, near the sun too
+/// (1 − cos γ is taken as |v − s|²/2, so the Mie peak does not amplify the rounding of cos γ).
 ///
 /// ```
 /// use sky_core::aoas::{AoasSky, Scattering, Style};
@@ -341,6 +380,36 @@ impl AoasSky {
     #[must_use]
     pub fn style(&self) -> &Style {
         &self.style
+    }
+
+    /// The constants of the ray march, exactly as [`rgb`](Self::rgb) uses them: for GPU shaders
+    /// (sky-gpu) that take these values as uniforms. They cover the physical sky and the sky
+    /// hue and day cycle of any style; the pattern principles (cloud noise and shapes) and
+    /// ambiguity are not among them (see [`has_pattern_or_ambiguity`](Self::has_pattern_or_ambiguity)).
+    #[must_use]
+    pub fn kernel_constants(&self) -> KernelConstants {
+        KernelConstants {
+            apex: self.apex,
+            sun: self.sun.direction(),
+            camera_radius: self.camera_radius,
+            camera_lift: self.camera_lift,
+            far_lift: self.far_lift,
+            camera_density_log2: self.camera_density_log2,
+            sun_apex: self.sun_apex,
+            extinction_log2: self.extinction_log2,
+            rayleigh: self.rayleigh,
+            mie: self.mie,
+            mie_phase: self.mie_phase,
+            samples: self.samples,
+        }
+    }
+
+    /// Whether the style has a principle beyond the scattering, sky hue and day cycle: cloud
+    /// noise, cloud shapes or ambiguity ([`kernel_constants`](Self::kernel_constants) leaves
+    /// them out).
+    #[must_use]
+    pub fn has_pattern_or_ambiguity(&self) -> bool {
+        self.has_pattern() || self.style.ambiguity.is_some()
     }
 
     /// The sun of the style's day cycle.
@@ -516,6 +585,9 @@ impl AoasSky {
         let mu = v.dot(self.apex).max(0.0).min(1.0);
         #[allow(clippy::manual_clamp)]
         let nu = v.dot(self.sun.direction()).max(-1.0).min(1.0);
+        // 1 − ν = |v − s|²/2 for unit v and s, without the cancellation of 1 − ν near the sun
+        // (where the Mie peak would amplify it).
+        let one_minus_nu = 0.5 * (v - self.sun.direction()).length_squared();
         // Eq. 3's ray from Pv to the outer sphere: t² + 2 (R+h) μ t − far_lift = 0, solved
         // without cancellation (b ≥ 0).
         let b = self.camera_radius * mu;
@@ -529,6 +601,7 @@ impl AoasSky {
             above,
             mu,
             nu,
+            one_minus_nu,
             step,
             start_offset,
         }
@@ -569,7 +642,7 @@ impl AoasSky {
         let [mie_a, one_minus_g2, two_g, q_min] = self.mie_phase;
         // 1 + g² − 2g cos = (1 − g)² + 2g (1 − cos): no cancellation near the sun for g > 0;
         // never below its true minimum (1 − |g|)², which rounding could cross for g < 0.
-        let q = (one_minus_g2 + two_g * (1.0 - nu)).max(q_min);
+        let q = (one_minus_g2 + two_g * ray.one_minus_nu).max(q_min);
         let rq = math::rsqrt(q);
         let mie_phase = mie_a * one_plus_cos2 * (rq * rq * rq);
         let w = ray.step * ray.above;
@@ -603,6 +676,7 @@ struct Lanes {
     above: [f32; CHUNK],
     mu: [f32; CHUNK],
     nu: [f32; CHUNK],
+    one_minus_nu: [f32; CHUNK],
     step: [f32; CHUNK],
     start_offset: [f32; CHUNK],
 }
@@ -612,6 +686,7 @@ impl Lanes {
     fn set(&mut self, k: usize, r: RayStart) {
         (self.dir[0][k], self.dir[1][k], self.dir[2][k]) = (r.dir.x, r.dir.y, r.dir.z);
         (self.above[k], self.mu[k], self.nu[k]) = (r.above, r.mu, r.nu);
+        self.one_minus_nu[k] = r.one_minus_nu;
         (self.step[k], self.start_offset[k]) = (r.step, r.start_offset);
     }
 
@@ -622,6 +697,7 @@ impl Lanes {
             above: self.above[k],
             mu: self.mu[k],
             nu: self.nu[k],
+            one_minus_nu: self.one_minus_nu[k],
             step: self.step[k],
             start_offset: self.start_offset[k],
         }

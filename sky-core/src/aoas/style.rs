@@ -38,6 +38,7 @@ pub const MIN_NOON_ELEVATION: f32 = 1.0 * PI / 180.0;
 /// the fragment's direction and `seed`: a frame is reproducible, and another seed gives another
 /// pattern.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Ambiguity {
     /// l_pt of eq. 6, in [0, [`MAX_AMBIGUITY`]].
     pub neighbourhood: f32,
@@ -53,6 +54,7 @@ pub struct Ambiguity {
 /// by the noise mapped to [0, 1], `(1 + noise)/2`; `strength` blends between no change (0) and
 /// eq. 8 as written (1): saturation × (1 − strength · (1 − (1 + noise)/2)).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct CloudNoise {
     /// S_noise of eq. 7: the noise's feature size, in [[`MIN_NOISE_SIZE`], [`MAX_NOISE_SIZE`]],
     /// relative to the fragment's distance (about radians for small sizes).
@@ -190,6 +192,7 @@ impl Style {
 
 /// Named styles that reproduce the figures of seed 004.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Preset {
     /// O'Neil's physical sky at noon, every principle off (Fig. 1, "a naturally beautiful sky").
     Physical,
@@ -228,7 +231,7 @@ const BLUE: Vec3 = Vec3::new(2.0, 7.0, 30.0);
 const CORAL: Vec3 = Vec3::new(22.0, 7.5, 4.5);
 
 impl Preset {
-    /// Every preset, in the order of the README's strip.
+    /// Every preset, in the order of the gallery's strip (`sky-train gallery`, docs/aoas_presets.png).
     pub const ALL: [Self; 11] = [
         Self::Physical,
         Self::Sunrise,

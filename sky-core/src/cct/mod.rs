@@ -49,6 +49,7 @@ pub const MAX_CCT: f32 = 100_000.0;
 
 /// A correlated colour temperature and the signed distance from the Planckian locus.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Cct {
     /// Correlated colour temperature in kelvin.
     pub kelvin: f32,

@@ -78,6 +78,7 @@ const ACT_FRAC: u32 = 23;
 /// [`pretrained::PREETHAM_FIXED`](super::pretrained::PREETHAM_FIXED) and
 /// [`pretrained::HOSEK_FIXED`](super::pretrained::HOSEK_FIXED).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct FixedNeuralWeights<const H: usize = 12> {
     /// Hidden layer weights acting on the raw inputs {√t, θ_sun, v_x, v_y, v_z, d}, Q7.24.
     pub hidden: [[i32; INPUTS]; H],
@@ -250,6 +251,7 @@ pub fn direction_q15(dir: Vec3) -> [i16; 3] {
 /// The neural sky for one sun position and turbidity, evaluated in fixed point (see the
 /// [module docs](self)).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct FixedNeuralSky<const H: usize = 12> {
     /// The sun direction, Q1.30 (for d).
     sun: [i64; 3],

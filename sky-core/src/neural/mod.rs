@@ -95,6 +95,35 @@ impl SkyInputs {
     }
 }
 
+/// A [`NeuralSky`] with √t, θ_sun, eq. 10's rotation and the input scaling folded into the
+/// first layer ([`NeuralSky::folded`]). For a unit view direction v (not rotated) and
+/// d = |v − sun|, hidden neuron j's pre-activation is
+/// `h_j = constant[j] + coeff_x[j] v_x + coeff_y[j] v_y + coeff_z[j] v_z + coeff_d[j] d`,
+/// its activation `a_j = 1/(1 + h_j²)` (eq. 5), channel c's output sum
+/// `z_c = output_bias[c] + Σ_j output[c][j] a_j` (eq. 6), and the radiance `half_scale[c] · z_c²`
+/// (eq. 7, see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FoldedNetwork<const H: usize = 12> {
+    /// The unit direction towards the sun.
+    pub sun: Vec3,
+    /// The part of each hidden neuron's pre-activation that depends only on the sky.
+    pub constant: [f32; H],
+    /// Each hidden neuron's coefficient of v_x (eq. 10's rotation and the input scaling folded in).
+    pub coeff_x: [f32; H],
+    /// Each hidden neuron's coefficient of v_y.
+    pub coeff_y: [f32; H],
+    /// Each hidden neuron's coefficient of v_z.
+    pub coeff_z: [f32; H],
+    /// Each hidden neuron's coefficient of d.
+    pub coeff_d: [f32; H],
+    /// Output weights, a row per channel (R, G, B).
+    pub output: [[f32; H]; OUTPUTS],
+    /// Output biases.
+    pub output_bias: [f32; OUTPUTS],
+    /// ½ · output scale per channel.
+    pub half_scale: [f32; OUTPUTS],
+}
+
 /// The neural sky for one sun position and turbidity, with `H` hidden neurons (12 by default).
 ///
 /// ```
@@ -174,6 +203,24 @@ impl<const H: usize> NeuralSky<H> {
             sky.coeff_d[j] = ws[5];
         }
         Ok(sky)
+    }
+
+    /// The network with everything that depends only on the sky folded into the first layer,
+    /// exactly as [`rgb`](Self::rgb) evaluates it: for GPU shaders (sky-gpu) that take these
+    /// values as uniforms and compute only the per-direction part.
+    #[must_use]
+    pub fn folded(&self) -> FoldedNetwork<H> {
+        FoldedNetwork {
+            sun: self.sun,
+            constant: self.constant,
+            coeff_x: self.coeff_x,
+            coeff_y: self.coeff_y,
+            coeff_z: self.coeff_z,
+            coeff_d: self.coeff_d,
+            output: self.output,
+            output_bias: self.output_bias,
+            half_scale: self.half_scale,
+        }
     }
 
     /// Linear sRGB radiance towards `dir` (need not be normalised if its length lies in

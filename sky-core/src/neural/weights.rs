@@ -84,6 +84,7 @@ pub const fn encoded_len(hidden: usize) -> usize {
 
 /// Why a weight file could not be decoded (or encoded).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
 pub enum WeightsError {
     /// The data ends before the file does.
@@ -178,6 +179,7 @@ impl core::error::Error for WeightsError {}
 
 /// The weights of a 6-H-3 neural sky, its input/output normalisation and its training domain.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct NeuralWeights<const H: usize = 12> {
     /// Hidden-layer weights: row j holds neuron j's weights for the normalised inputs
     /// u = (√t, θ_sun, v_x, v_y, v_z, d).

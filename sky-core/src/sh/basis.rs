@@ -46,11 +46,11 @@ pub const fn index(l: usize, m: isize) -> usize {
 }
 
 /// `(2m − 1)!!`: `P_m^m / sin^m θ` without the Condon-Shortley phase.
-const DOUBLE_FACTORIAL: [f32; MAX_BANDS] = [1.0, 1.0, 3.0, 15.0, 105.0, 945.0, 10395.0];
+pub const DOUBLE_FACTORIAL: [f32; MAX_BANDS] = [1.0, 1.0, 3.0, 15.0, 105.0, 945.0, 10395.0];
 
 /// `[(2l − 1) / (l − m), (l + m − 1) / (l − m)]` for `l > m`: the recurrence
 /// `P_l^m = ((2l − 1) z P_{l−1}^m − (l + m − 1) P_{l−2}^m) / (l − m)` without a division.
-const RECURRENCE: [[[f32; 2]; MAX_BANDS]; MAX_BANDS] = {
+pub const RECURRENCE: [[[f32; 2]; MAX_BANDS]; MAX_BANDS] = {
     let mut r = [[[0.0; 2]; MAX_BANDS]; MAX_BANDS];
     let mut l = 1;
     while l < MAX_BANDS {
@@ -70,7 +70,7 @@ const RECURRENCE: [[[f32; 2]; MAX_BANDS]; MAX_BANDS] = {
 /// of the f64 values of the formula in the module docs (checked by a test).
 #[rustfmt::skip]
 #[allow(clippy::unreadable_literal, clippy::excessive_precision)]
-const NORMALISATION: [[f32; MAX_BANDS]; MAX_BANDS] = [
+pub const NORMALISATION: [[f32; MAX_BANDS]; MAX_BANDS] = [
     [0.28209479177387814, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
     [0.4886025119029199, 0.48860251190292, 0.0, 0.0, 0.0, 0.0, 0.0],
     [0.6307831305050401, 0.36418281019735976, 0.18209140509867988, 0.0, 0.0, 0.0, 0.0],

@@ -46,6 +46,7 @@ pub const fn stored_index(l: usize, m: usize) -> usize {
 /// vectorises. The units are those of the model's radiance (cd/m² scale for the Preetham sky)
 /// per unit SH coefficient.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct PolynomialTable<const NT: usize, const NU: usize, const MT: usize, const MU: usize> {
     /// The fitted sun zenith range `[θ_min, θ_max]`, radians.
     pub sun_zenith: [f32; 2],

@@ -1,4 +1,5 @@
-//! `sky-train export`: a weight file as Rust source for compile-time embedding in sky-core.
+//! `sky-train export`: a weight file as Rust source for compile-time embedding in sky-core, a
+//! sky model's GPU shader (GLSL ES 3.00 or WGSL, sky-gpu), or sky-wasm's module of them all.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -6,24 +7,41 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 
+use super::SkyArgs;
+use crate::args::ParamError;
+use crate::sources::{ModelKind, SkyParams};
 use crate::{export, image_io};
 
 /// `export`'s arguments.
 #[derive(Args)]
 pub struct ExportArgs {
-    /// The weight file.
-    #[arg(long, value_name = "FILE")]
-    pub weights: PathBuf,
-    /// The constant's name (e.g. PREETHAM).
+    /// f32 and fixed: the weight file (required). glsl and wgsl: `--model` names the shader,
+    /// and with `--constants` these arguments name the sky whose parameters it holds.
+    #[command(flatten)]
+    sky: SkyArgs,
+    /// The constant's name (f32 and fixed; e.g. PREETHAM).
     #[arg(long)]
-    pub name: String,
-    /// The Rust file to write (atomically).
+    pub name: Option<String>,
+    /// The file to write (atomically).
     #[arg(long, value_name = "FILE")]
     pub out: PathBuf,
-    /// What to write: the f32 weights (`NeuralWeights`, for `NeuralSky`) or the weights
-    /// quantised to Q7.24 (`FixedNeuralWeights`, for `FixedNeuralSky` on parts without an FPU).
+    /// What to write: the f32 weights (`NeuralWeights`, for `NeuralSky`), the weights
+    /// quantised to Q7.24 (`FixedNeuralWeights`, for `FixedNeuralSky` on parts without an
+    /// FPU), a model's shader in GLSL ES 3.00 or WGSL, or the JavaScript module of every
+    /// model's shader that sky-wasm ships.
     #[arg(long, value_enum, default_value_t = ExportFormat::F32)]
     pub format: ExportFormat,
+    /// glsl and wgsl: write the parameters of the sky that `--sun-zenith`, `--turbidity`,
+    /// `--weights`, `--style` or `--bands` name into the shader as constants (a shader for
+    /// that sky alone); without it the shader reads them from a uniform array.
+    #[arg(long)]
+    pub constants: bool,
+    /// wgsl: the uniform array's `@group`.
+    #[arg(long, default_value_t = 0)]
+    pub group: u32,
+    /// wgsl: the uniform array's `@binding`.
+    #[arg(long, default_value_t = 0)]
+    pub binding: u32,
 }
 
 /// `export --format`.
@@ -33,21 +51,81 @@ pub enum ExportFormat {
     F32,
     /// `FixedNeuralWeights<12>` in Q7.24.
     Fixed,
+    /// A model's shader, GLSL ES 3.00 (WebGL2).
+    Glsl,
+    /// A model's shader, WGSL (WebGPU).
+    Wgsl,
+    /// Every model's shader in both languages as a JavaScript module (sky-wasm's `shaders.js`).
+    Js,
 }
 
-/// Writes the Rust source of `--weights` to `--out`.
+/// Writes what `--format` names to `--out`.
 ///
 /// # Errors
-/// An unreadable weight file, weights that do not fit Q7.24, a failed write.
+/// A missing or inapplicable argument (a [`ParamError`]), an unreadable weight file, weights
+/// that do not fit Q7.24, a failed write.
 pub fn run(args: &ExportArgs, output: &mut dyn Write) -> Result<()> {
-    let weights = export::read_weights::<12>(&args.weights)?;
     let text = match args.format {
-        ExportFormat::F32 => export::pretrained_source(&weights, &args.name, &args.weights),
-        ExportFormat::Fixed => {
-            export::pretrained_fixed_source(&weights, &args.name, &args.weights)?
+        ExportFormat::F32 | ExportFormat::Fixed => {
+            let (Some(path), Some(name)) = (&args.sky.weights, &args.name) else {
+                return Err(ParamError(
+                    "--format f32 and fixed need --weights FILE and --name NAME".into(),
+                )
+                .into());
+            };
+            let weights = export::read_weights::<12>(path)?;
+            if matches!(args.format, ExportFormat::F32) {
+                export::pretrained_source(&weights, name, path)
+            } else {
+                export::pretrained_fixed_source(&weights, name, path)?
+            }
         }
+        ExportFormat::Glsl => shader_source(args, sky_gpu::Language::Glsl)?,
+        ExportFormat::Wgsl => shader_source(args, sky_gpu::Language::Wgsl)?,
+        ExportFormat::Js => sky_gpu::js_module(),
     };
     image_io::write_text(&args.out, &text)?;
     writeln!(output, "wrote {}", args.out.display())?;
     Ok(())
+}
+
+/// `export --format glsl|wgsl`: the shader of `--model`, its parameters a uniform array or,
+/// with `--constants`, the named sky's.
+fn shader_source(args: &ExportArgs, lang: sky_gpu::Language) -> Result<String> {
+    let sky = &args.sky;
+    let model = match sky.model {
+        ModelKind::Preetham => sky_gpu::Model::Preetham,
+        ModelKind::NeuralPreetham | ModelKind::NeuralHosek | ModelKind::Neural => {
+            sky_gpu::Model::Neural
+        }
+        ModelKind::Aoas => sky_gpu::Model::Aoas,
+        ModelKind::Sh => sky_gpu::Model::Sh,
+        ModelKind::Hosek => {
+            return Err(ParamError(
+                "--model hosek has no shader (preetham, neural, neural-preetham, neural-hosek, aoas or sh)".into(),
+            )
+            .into());
+        }
+    };
+    let shader = model.shader();
+    if !args.constants {
+        if sky.params() != SkyParams::default() || sky.weights.is_some() {
+            return Err(ParamError(
+                "--sun-zenith, --sun-azimuth, --turbidity, --weights, --style, --bands and --no-ringing-filter name one sky: add --constants to write its parameters into the shader".into(),
+            )
+            .into());
+        }
+        return Ok(shader.source(
+            lang,
+            sky_gpu::Storage::Uniform {
+                group: args.group,
+                binding: args.binding,
+            },
+        ));
+    }
+    let params = sky.source()?.shader_params();
+    let (_, params) = params
+        .ok_or_else(|| ParamError(format!("--model {} has no shader", sky.model)))?
+        .map_err(|e| ParamError(format!("--style: {e}")))?;
+    Ok(shader.source(lang, sky_gpu::Storage::Constant(&params)))
 }

@@ -25,7 +25,7 @@ use anyhow::Result;
 use clap::{Args, ValueEnum};
 use sky_core::geom::{Equirect, Extent};
 
-use crate::args::finite;
+use crate::args::{elevation, finite, latitude, longitude, non_negative};
 use crate::sources::{self, ModelKind, ParamError, SkyParams};
 
 /// The arguments that select one sky.
@@ -58,7 +58,42 @@ pub struct SkyArgs {
     /// Leave out the ringing filter of seed 001, eq. 5 (sh only).
     #[arg(long)]
     no_ringing_filter: bool,
+    /// The sun from a UTC time (RFC 3339, e.g. 2026-06-21T10:00:00Z) and a place (--lat,
+    /// --lon, --elevation), instead of --sun-zenith/--sun-azimuth; also dates a perez reading.
+    #[arg(long, value_name = "UTC")]
+    time: Option<String>,
+    /// Latitude in degrees, north positive (-90 to 90), with --time.
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = latitude)]
+    lat: Option<f64>,
+    /// Longitude in degrees, east positive (-180 to 180), with --time.
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = longitude)]
+    lon: Option<f64>,
+    /// Elevation of the place in metres (-500 to 10000; default 0), with --time.
+    #[arg(long, value_name = "M", allow_negative_numbers = true, value_parser = elevation)]
+    elevation: Option<f64>,
+    /// CIE standard general sky type, 1 (overcast) to 15 (cloudless, turbid) (cie only).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u8).range(1..=15))]
+    cie_type: Option<u8>,
+    /// Diffuse horizontal illuminance the CIE sky is scaled to, lux (cie only; default 10000).
+    #[arg(long, value_name = "LUX", value_parser = non_negative)]
+    diffuse_lux: Option<f64>,
+    /// Zenith luminance the CIE sky is scaled to, cd/m2 (cie only; instead of --diffuse-lux).
+    #[arg(long, value_name = "CD", value_parser = non_negative)]
+    zenith_luminance: Option<f64>,
+    /// Measured global horizontal irradiance, W/m2 (perez only; split by Erbs et al. 1982
+    /// without --dhi).
+    #[arg(long, value_name = "W", allow_negative_numbers = true, value_parser = finite)]
+    ghi: Option<f64>,
+    /// Measured diffuse horizontal irradiance, W/m2 (perez only, with --ghi).
+    #[arg(long, value_name = "W", allow_negative_numbers = true, value_parser = finite)]
+    dhi: Option<f64>,
+    /// Measured global horizontal illuminance, lux (perez only, instead of --ghi).
+    #[arg(long, value_name = "LUX", allow_negative_numbers = true, value_parser = finite)]
+    global_lux: Option<f64>,
 }
+
+/// A sun's zenith and azimuth in degrees and the day of the year, each when known.
+type SunAndDay = (Option<f64>, Option<f64>, Option<u32>);
 
 impl SkyArgs {
     /// The sky these arguments name.
@@ -70,26 +105,70 @@ impl SkyArgs {
                 Ok(Box::new(sources::Neural::new(
                     &weights,
                     ModelKind::Neural,
-                    &self.params(),
+                    &self.params()?,
                 )?))
             }
             (Some(_), model) => Err(ParamError(format!(
                 "--weights applies to --model neural only, not --model {model}"
             ))
             .into()),
-            (None, model) => Ok(sources::build(model, &self.params())?),
+            (None, model) => Ok(sources::build(model, &self.params()?)?),
         }
     }
 
-    fn params(&self) -> SkyParams {
-        SkyParams {
-            sun_zenith_deg: self.sun_zenith,
-            sun_azimuth_deg: self.sun_azimuth,
+    fn params(&self) -> Result<SkyParams, ParamError> {
+        let (sun_zenith_deg, sun_azimuth_deg, day_of_year) = self.sun()?;
+        Ok(SkyParams {
+            sun_zenith_deg,
+            sun_azimuth_deg,
             turbidity: self.turbidity,
             style: self.style.clone(),
             bands: self.bands,
             ringing_filter: self.no_ringing_filter.then_some(false),
+            cie_type: self.cie_type,
+            diffuse_lux: self.diffuse_lux,
+            zenith_luminance: self.zenith_luminance,
+            ghi: self.ghi,
+            dhi: self.dhi,
+            global_lux: self.global_lux,
+            day_of_year,
+        })
+    }
+
+    /// The sun's zenith and azimuth in degrees (sky-core's azimuth convention) and the day of
+    /// the year: from --time and the place, or from --sun-zenith/--sun-azimuth.
+    fn sun(&self) -> Result<SunAndDay, ParamError> {
+        let err = ParamError;
+        let Some(time) = &self.time else {
+            if self.lat.is_some() || self.lon.is_some() || self.elevation.is_some() {
+                return Err(err("--lat/--lon/--elevation need --time".into()));
+            }
+            return Ok((self.sun_zenith, self.sun_azimuth, None));
+        };
+        if self.sun_zenith.is_some() || self.sun_azimuth.is_some() {
+            return Err(err(
+                "--time and --sun-zenith/--sun-azimuth are alternatives: give one".into(),
+            ));
         }
+        let (Some(lat), Some(lon)) = (self.lat, self.lon) else {
+            return Err(err("--time needs --lat and --lon".into()));
+        };
+        let site = sky_core::solar::Site::new(lat, lon, self.elevation.unwrap_or(0.0))
+            .map_err(|e| err(format!("--lat/--lon/--elevation: {e}")))?;
+        let t = crate::captures::manifest::UnixTime::parse(time)
+            .map_err(|e| err(format!("--time {e:#}")))?;
+        let p = t
+            .sun_position(&site)
+            .map_err(|e| err(format!("--time {e:#}")))?;
+        let (y, m, d, ..) = t.to_civil();
+        let day = sky_core::solar::UtcTime::new(y, m, d, 0, 0, 0.0)
+            .map_err(|e| err(format!("--time {time}: {e}")))?
+            .day_of_year();
+        Ok((
+            Some(p.zenith_deg()),
+            Some(sky_core::solar::compass_to_azimuth(p.azimuth_deg())),
+            Some(day),
+        ))
     }
 }
 

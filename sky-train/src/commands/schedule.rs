@@ -1,12 +1,13 @@
 //! `sky-train schedule`: a lighting controller's day as CSV.
 
 use std::io::{BufWriter, Write};
+use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
 
 use crate::args::{date, elevation, in_range, latitude, longitude};
-use crate::controller::{ScheduleConfig, schedule};
+use crate::controller::{ScheduleConfig, read_measurements, schedule, schedule_measured};
 
 /// `schedule`'s arguments.
 #[derive(Args)]
@@ -17,11 +18,19 @@ pub struct ScheduleArgs {
     /// Longitude in degrees, east positive (-180 to 180).
     #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = longitude)]
     pub lon: f64,
-    /// The UTC date, YYYY-MM-DD (years 1 to 2999).
-    #[arg(long, value_name = "YYYY-MM-DD", value_parser = date)]
-    pub date: (i32, u32, u32),
-    /// Minutes between rows, from 00:00 UTC (1 to 1440).
-    #[arg(long, value_name = "MIN", default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=1440))]
+    /// The UTC date, YYYY-MM-DD (years 1 to 2999); required unless --measurements is given.
+    #[arg(long, value_name = "YYYY-MM-DD", value_parser = date, required_unless_present = "measurements", conflicts_with = "measurements")]
+    pub date: Option<(i32, u32, u32)>,
+    /// Drive the schedule by outdoor measurements instead of the clear sky: a CSV file whose
+    /// header names `utc` (RFC 3339) and `global_lux` (a lux sensor) or `ghi_wm2` with optional
+    /// `dhi_wm2` (pyranometers). One output row per reading, with two more columns: sky_type
+    /// (the Perez sky-clearness bin, 1 overcast to 8 clear; 0 with the sun below the horizon)
+    /// and clear_sky_index (the reading over the clear sky's horizontal illuminance, which is
+    /// the sky alone, without the direct sun, until sky-core has a daylight model with the sun).
+    #[arg(long, value_name = "FILE.csv")]
+    pub measurements: Option<PathBuf>,
+    /// Minutes between rows, from 00:00 UTC (1 to 1440; not with --measurements).
+    #[arg(long, value_name = "MIN", default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=1440), conflicts_with = "measurements")]
     pub step: u32,
     /// Elevation of the site in metres above sea level (-500 to 10000).
     #[arg(long, value_name = "M", default_value_t = 0.0, allow_negative_numbers = true, value_parser = elevation)]
@@ -44,7 +53,8 @@ fn full_scale_lux(s: &str) -> Result<f32, String> {
     in_range(s, 1.0, 200_000.0, "an illuminance in lux").map(|v| v as f32)
 }
 
-/// Writes the day's schedule to `output` ([`crate::controller::schedule`]).
+/// Writes the day's schedule to `output` ([`crate::controller::schedule`]), or the schedule at
+/// the times of `--measurements` driven by them ([`crate::controller::schedule_measured`]).
 ///
 /// # Errors
 /// Bad parameters as a [`crate::args::ParamError`], a failed write.
@@ -53,13 +63,17 @@ pub fn run(args: &ScheduleArgs, output: &mut dyn Write) -> Result<()> {
         latitude: args.lat,
         longitude: args.lon,
         elevation: args.elevation,
-        date: args.date,
+        // Unused with --measurements (their rows carry the dates).
+        date: args.date.unwrap_or((2000, 1, 1)),
         step_minutes: args.step,
         turbidity: args.turbidity,
         full_scale_lux: args.full_scale_lux,
     };
     let mut out = BufWriter::new(output);
-    schedule(&config, &mut out)?;
+    match &args.measurements {
+        Some(file) => schedule_measured(&config, &read_measurements(file)?, file, &mut out)?,
+        None => schedule(&config, &mut out)?,
+    }
     out.flush()?;
     Ok(())
 }

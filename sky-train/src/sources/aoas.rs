@@ -69,6 +69,11 @@ impl SkySource for Aoas {
         )
     }
 
+    fn shader_params(&self) -> Option<Result<(sky_gpu::Model, Vec<f32>), sky_gpu::UnsupportedSky>> {
+        let params = sky_gpu::models::aoas::params(&self.sky);
+        Some(params.map(|p| (sky_gpu::Model::Aoas, p.to_vec())))
+    }
+
     fn rgb_batch(&self, dirs: &[Vec3], out: &mut [Vec3]) {
         dispatch::fastest(
             #[inline(always)]

@@ -4,21 +4,25 @@
 //! sky-core's conventions: +z up, luminance in cd/m², linear sRGB on the same scale.
 
 mod aoas;
+mod cie;
 mod hosek;
 mod neural;
+mod perez;
 mod preetham;
 mod sh;
 
 use std::fmt;
 
-use sky_core::Vec3;
 use sky_core::color::{self, Xyy};
+use sky_core::{Photometry, Vec3};
 
 use crate::args::describe;
 pub use crate::args::{ParamError, radians};
 pub use aoas::Aoas;
+pub use cie::Cie;
 pub use hosek::Hosek;
 pub use neural::Neural;
+pub use perez::Perez;
 pub use preetham::Preetham;
 pub use sh::Sh;
 
@@ -38,6 +42,12 @@ pub trait SkySource: Send + Sync {
         for (o, c) in out.iter_mut().zip(rgb) {
             *o = color::xyz_to_xyy(color::linear_srgb_to_xyz(c));
         }
+    }
+
+    /// The sky's GPU shader model and its parameters packed as that shader reads them
+    /// (sky-gpu); `None` for models without a shader.
+    fn shader_params(&self) -> Option<Result<(sky_gpu::Model, Vec<f32>), sky_gpu::UnsupportedSky>> {
+        None
     }
 }
 
@@ -59,6 +69,12 @@ pub enum ModelKind {
     /// The spherical-harmonics lighting of the Preetham sky, reconstructed from sky-core's
     /// polynomial tables (seed 001; `--bands`, `--no-ringing-filter`).
     Sh,
+    /// A CIE standard general sky, ISO 15469:2004 (sky-core; `--cie-type`, `--diffuse-lux` or
+    /// `--zenith-luminance`).
+    Cie,
+    /// The Perez all-weather sky of a measurement (sky-core; `--ghi`, optionally `--dhi`, or
+    /// `--global-lux`).
+    Perez,
 }
 
 impl ModelKind {
@@ -71,7 +87,9 @@ impl ModelKind {
             | Self::NeuralPreetham
             | Self::NeuralHosek
             | Self::Aoas
-            | Self::Sh => (0.0, 90.0),
+            | Self::Sh
+            | Self::Cie
+            | Self::Perez => (0.0, 90.0),
             Self::Neural => (0.0, 180.0),
         }
     }
@@ -79,7 +97,7 @@ impl ModelKind {
     /// Whether the model has a turbidity (AOAS's atmosphere is set by its style instead).
     #[must_use]
     pub fn uses_turbidity(self) -> bool {
-        !matches!(self, Self::Aoas)
+        !matches!(self, Self::Aoas | Self::Cie | Self::Perez)
     }
 
     /// The turbidities the model accepts.
@@ -91,8 +109,9 @@ impl ModelKind {
             Self::Sh => (2.5, 6.0),
             Self::Hosek | Self::NeuralHosek => (1.0, 10.0),
             Self::Neural => (0.0, f64::INFINITY),
-            // AOAS has no turbidity (its atmosphere is set by its style).
-            Self::Aoas => (0.0, 0.0),
+            // AOAS has no turbidity (its atmosphere is set by its style), nor have the weather
+            // skies (set by their type or measurement).
+            Self::Aoas | Self::Cie | Self::Perez => (0.0, 0.0),
         }
     }
 }
@@ -107,6 +126,8 @@ impl fmt::Display for ModelKind {
             Self::Neural => "neural",
             Self::Aoas => "aoas",
             Self::Sh => "sh",
+            Self::Cie => "cie",
+            Self::Perez => "perez",
         })
     }
 }
@@ -128,6 +149,20 @@ pub struct SkyParams {
     pub bands: Option<usize>,
     /// Whether the ringing filter of seed 001 eq. 5 is applied (sh only; on when absent).
     pub ringing_filter: Option<bool>,
+    /// The CIE standard general sky type, 1-15 (cie only; required).
+    pub cie_type: Option<u8>,
+    /// The diffuse horizontal illuminance a CIE sky is scaled to, lux (cie only).
+    pub diffuse_lux: Option<f64>,
+    /// The zenith luminance a CIE sky is scaled to, cd/m² (cie only).
+    pub zenith_luminance: Option<f64>,
+    /// Measured global horizontal irradiance, W/m² (perez only).
+    pub ghi: Option<f64>,
+    /// Measured diffuse horizontal irradiance, W/m² (perez only, with `ghi`).
+    pub dhi: Option<f64>,
+    /// Measured global horizontal illuminance, lux (perez only).
+    pub global_lux: Option<f64>,
+    /// The day of the year of the measurement, for the extraterrestrial irradiance (perez).
+    pub day_of_year: Option<u32>,
 }
 
 impl SkyParams {
@@ -196,6 +231,8 @@ pub fn build(kind: ModelKind, params: &SkyParams) -> Result<Box<dyn SkySource>, 
         )),
         ModelKind::Aoas => Ok(Box::new(Aoas::new(params)?)),
         ModelKind::Sh => Ok(Box::new(Sh::new(params)?)),
+        ModelKind::Cie => Ok(Box::new(Cie::new(params)?)),
+        ModelKind::Perez => Ok(Box::new(Perez::new(params)?)),
     }
 }
 
@@ -219,6 +256,28 @@ impl SkyParams {
         }
         if self.ringing_filter.is_some() && kind != ModelKind::Sh {
             return refuse("--no-ringing-filter", "sh");
+        }
+        let cie = [
+            ("--cie-type", self.cie_type.is_some()),
+            ("--diffuse-lux", self.diffuse_lux.is_some()),
+            ("--zenith-luminance", self.zenith_luminance.is_some()),
+        ];
+        if let Some((flag, _)) = cie
+            .iter()
+            .find(|(_, given)| *given && kind != ModelKind::Cie)
+        {
+            return refuse(flag, "cie");
+        }
+        let perez = [
+            ("--ghi", self.ghi.is_some()),
+            ("--dhi", self.dhi.is_some()),
+            ("--global-lux", self.global_lux.is_some()),
+        ];
+        if let Some((flag, _)) = perez
+            .iter()
+            .find(|(_, given)| *given && kind != ModelKind::Perez)
+        {
+            return refuse(flag, "perez");
         }
         Ok(())
     }
@@ -252,6 +311,19 @@ fn flag(parameter: &str) -> &str {
         "sun zenith" => "--sun-zenith",
         "sun azimuth" => "--sun-azimuth",
         "SH bands" => "--bands",
+        "CIE sky type" => "--cie-type",
+        "diffuse illuminance" => "--diffuse-lux",
+        "zenith luminance" => "--zenith-luminance",
+        "global irradiance" => "--ghi",
+        "diffuse irradiance" => "--dhi",
+        "global illuminance" => "--global-lux",
         other => other,
+    }
+}
+
+/// Linear sRGB of a sky-core model with a photometric scale, direction by direction.
+fn photometric_rgb_batch<S: Photometry>(sky: &S, dirs: &[Vec3], out: &mut [Vec3]) {
+    for (o, d) in out.iter_mut().zip(dirs) {
+        *o = color::xyz_to_linear_srgb(sky.xyz(*d));
     }
 }

@@ -46,6 +46,11 @@ impl SkySource for Neural {
         self.label.clone()
     }
 
+    fn shader_params(&self) -> Option<Result<(sky_gpu::Model, Vec<f32>), sky_gpu::UnsupportedSky>> {
+        let params = sky_gpu::models::neural::params(&self.sky);
+        Some(Ok((sky_gpu::Model::Neural, params)))
+    }
+
     fn rgb_batch(&self, dirs: &[Vec3], out: &mut [Vec3]) {
         dispatch::neural_batch(&self.sky, dirs, out);
     }

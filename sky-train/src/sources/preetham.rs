@@ -39,6 +39,11 @@ impl SkySource for Preetham {
         )
     }
 
+    fn shader_params(&self) -> Option<Result<(sky_gpu::Model, Vec<f32>), sky_gpu::UnsupportedSky>> {
+        let params = sky_gpu::models::preetham::params(&self.0);
+        Some(Ok((sky_gpu::Model::Preetham, params.to_vec())))
+    }
+
     fn rgb_batch(&self, dirs: &[Vec3], out: &mut [Vec3]) {
         dispatch::fastest(
             #[inline(always)]

@@ -67,6 +67,11 @@ impl SkySource for Sh {
         )
     }
 
+    fn shader_params(&self) -> Option<Result<(sky_gpu::Model, Vec<f32>), sky_gpu::UnsupportedSky>> {
+        let params = sky_gpu::models::sh::params(&self.sky);
+        Some(Ok((sky_gpu::Model::Sh, params.to_vec())))
+    }
+
     fn rgb_batch(&self, dirs: &[Vec3], out: &mut [Vec3]) {
         for (o, d) in out.iter_mut().zip(dirs) {
             *o = self.sky.radiance(*d);

@@ -1,6 +1,6 @@
 //! Training the neural sky (seed 000 §III-C): data sets, the paper's backpropagation with
 //! momentum, and full-batch Levenberg-Marquardt, which wins by orders of magnitude for a
-//! 123-parameter network (measured: see the README).
+//! 123-parameter network (measured: docs/training.md).
 
 pub mod backprop;
 pub mod dataset;

@@ -6,43 +6,18 @@
 // screenshot goes; CHROMIUM: the browser (default /usr/bin/chromium).
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
-import { createServer } from "node:http";
 import { readFile, mkdir } from "node:fs/promises";
 import path from "node:path";
-import { chromium } from "playwright-core";
+import { NO_GPU, launch, serve } from "./harness.mjs";
 
 const root = path.resolve(import.meta.dirname, "../../..");
 const site = process.env.SKY_WASM_SITE ?? path.join(root, "target/wasm/site");
 const artifacts = process.env.SKY_WASM_ARTIFACTS ?? path.join(root, "target/wasm/artifacts");
-const TYPES = { ".html": "text/html", ".js": "text/javascript", ".css": "text/css", ".wasm": "application/wasm", ".ts": "text/plain" };
-
-let server, browser, page, url;
-const problems = [];
+let server, browser, page, url, problems;
 
 before(async () => {
-  server = createServer(async (req, res) => {
-    const rel = decodeURIComponent(new URL(req.url, "http://localhost").pathname);
-    const file = path.join(site, rel.endsWith("/") ? rel + "index.html" : rel);
-    if (!file.startsWith(site)) return res.writeHead(403).end();
-    try {
-      const body = await readFile(file);
-      res.writeHead(200, { "content-type": TYPES[path.extname(file)] ?? "application/octet-stream" }).end(body);
-    } catch {
-      res.writeHead(404).end();
-    }
-  });
-  await new Promise((resolve) => server.listen(0, "127.0.0.1", resolve));
-  url = `http://127.0.0.1:${server.address().port}/`;
-  browser = await chromium.launch({
-    executablePath: process.env.CHROMIUM ?? "/usr/bin/chromium",
-    args: ["--no-sandbox", "--disable-gpu", "--disable-background-networking",
-      "--disable-component-update", "--disable-sync", "--no-first-run"],
-  });
-  page = await browser.newPage({ viewport: { width: 1200, height: 900 } });
-  page.on("console", (m) => { if (m.type() === "error") problems.push(`console: ${m.text()}`); });
-  page.on("pageerror", (e) => problems.push(`page error: ${e.message}`));
-  page.on("requestfailed", (r) => problems.push(`request failed: ${r.url()}`));
-  page.on("response", (r) => { if (r.status() >= 400) problems.push(`HTTP ${r.status()}: ${r.url()}`); });
+  ({ server, url } = await serve(site));
+  ({ browser, page, problems } = await launch(NO_GPU));
   await page.goto(url);
   await page.waitForSelector("body[data-ready=true]", { timeout: 30_000 });
 });

@@ -23,10 +23,10 @@ const pkg = process.env.SKY_WASM_NODE_PKG ?? path.join(root, "target/wasm/node/s
 const { Sky, Renderer, aoasPresets } = createRequire(import.meta.url)(pkg);
 
 test("the API is exported under its JavaScript names", () => {
-  for (const name of ["preetham", "neural", "neuralFromBytes", "aoas", "aoasWithSun", "sh"]) {
+  for (const name of ["preetham", "neural", "neuralFromBytes", "aoas", "aoasWithSun", "sh", "shUnfiltered"]) {
     assert.equal(typeof Sky[name], "function", `Sky.${name}`);
   }
-  for (const name of ["rgb", "autoExposure", "free"]) {
+  for (const name of ["rgb", "rgbBatch", "shaderParams", "irradiance", "autoExposure", "free"]) {
     assert.equal(typeof Sky.prototype[name], "function", `sky.${name}`);
   }
   for (const name of ["fisheye", "panorama", "sphere"]) {
@@ -103,4 +103,22 @@ test("the shipped module (after wasm-opt) gives native sky-core's values to 1e-6
     sky.free();
     assert.ok(worst <= 1e-6, `${kind}(${JSON.stringify(args)}): worst relative difference ${worst}`);
   }
+});
+
+test("rgbBatch gives rgb's values; shaderParams and irradiance reach JavaScript", () => {
+  const sky = Sky.neural("preetham", 0.9, 2.0, 3);
+  const angles = [[0.1, 0.2], [0.8, 2.0], [1.5, -1.0], [1.2, 3.0]];
+  const dirs = new Float32Array(angles.flatMap(([t, p]) => [Math.sin(t) * Math.cos(p), Math.sin(t) * Math.sin(p), Math.cos(t)]));
+  const batch = sky.rgbBatch(dirs);
+  assert.ok(batch instanceof Float32Array && batch.length === 12);
+  angles.forEach(([t, p], k) => {
+    const one = sky.rgb(t, p);
+    for (let c = 0; c < 3; c++) assert.ok(Math.abs(batch[3 * k + c] - one[c]) <= 1e-5 * one[c], `${k}: ${batch[3 * k + c]} vs ${one[c]}`);
+  });
+  assert.equal(sky.shaderParams().length, 4 * 27);
+  assert.throws(() => sky.irradiance(0, 0), /SH skies/);
+  assert.throws(() => Sky.aoas("smiley").shaderParams(), /without cloud noise, cloud shapes or ambiguity/);
+  const sh = Sky.sh(0.9, 2.0, 3, 3);
+  assert.ok(sh.irradiance(0, 0)[1] > 1000, "lux-scale irradiance from above");
+  assert.equal(Sky.shUnfiltered(0.9, 2.0, 3, 3).shaderParams().length, 4 * 49);
 });

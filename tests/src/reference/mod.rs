@@ -5,3 +5,4 @@
 
 pub mod neural;
 pub mod preetham;
+pub mod weather;

@@ -1,0 +1,7 @@
+//! One module per sky model: its shader's description and the packing of one sky's
+//! parameters.
+
+pub mod aoas;
+pub mod neural;
+pub mod preetham;
+pub mod sh;

@@ -1,0 +1,215 @@
+// Each model's generated shader on a GPU in Debian's Chromium, headless, against sky-core's CPU
+// values (sky-wasm's `Sky.rgbBatch`) at the same 1,600 view directions: the GLSL ES 3.00 text
+// in WebGL2 (ANGLE on SwiftShader) rendered into an RGBA32F target (EXT_color_buffer_float)
+// and read back, and the WGSL text in WebGPU (Dawn on SwiftShader's Vulkan) run as a compute
+// shader. The bound: 1e-3 relative per channel where sky-core's linear radiance is above 1e-3
+// of the image's peak.
+//
+// SKY_WASM_SITE: the built site (scripts/wasm.sh build).
+import { test, before, after } from "node:test";
+import assert from "node:assert/strict";
+import path from "node:path";
+import { SWIFTSHADER, launch, serve } from "./harness.mjs";
+
+const root = path.resolve(import.meta.dirname, "../../..");
+const site = process.env.SKY_WASM_SITE ?? path.join(root, "target/wasm/site");
+const BOUND = 1e-3;
+const FLOOR = 1e-3;
+
+let server, browser, page, url, problems;
+
+before(async () => {
+  ({ server, url } = await serve(site, { "/gpu.html": "<!doctype html><title>gpu</title><link rel=\"icon\" href=\"data:,\">" }));
+  ({ browser, page, problems } = await launch(SWIFTSHADER));
+  await page.goto(`${url}gpu.html`);
+  await page.evaluate(async () => {
+    const wasm = await import("/pkg/sky_wasm.js");
+    await wasm.default();
+    window.wasm = wasm;
+    window.shaders = await import("/pkg/shaders.js");
+  });
+});
+
+after(async () => {
+  await browser?.close();
+  server?.close();
+});
+
+/** The skies: [label, constructor name, arguments] of sky-wasm's `Sky`. */
+const DEG = Math.PI / 180;
+const SKIES = [
+  ["preetham, sun 30° from the zenith, turbidity 2.5", "preetham", [30 * DEG, 1.0, 2.5]],
+  ["preetham, sun 70°, turbidity 4", "preetham", [70 * DEG, -2.0, 4]],
+  ["preetham, sun 88°, turbidity 6", "preetham", [88 * DEG, 3.0, 6]],
+  ["neural (preetham weights), sun 30°, turbidity 2.5", "neural", ["preetham", 30 * DEG, 1.0, 2.5]],
+  ["neural (preetham weights), sun 85°, turbidity 5", "neural", ["preetham", 85 * DEG, -2.0, 5]],
+  ["neural (hosek weights), sun 45°, turbidity 2", "neural", ["hosek", 45 * DEG, 0.5, 2]],
+  ["neural (hosek weights), sun 80°, turbidity 8", "neural", ["hosek", 80 * DEG, 2.5, 8]],
+  ["aoas physical (noon)", "aoas", ["physical"]],
+  ["aoas physical, sun 75°", "aoasWithSun", ["physical", 75 * DEG, -2.0]],
+  ["aoas coral, sun 60°", "aoasWithSun", ["coral", 60 * DEG, 1.0]],
+  ["sh 3 bands, sun 40°, turbidity 3", "sh", [40 * DEG, 0.3, 3, 3]],
+  ["sh 7 bands, sun 75°, turbidity 5", "sh", [75 * DEG, -1.2, 5, 7]],
+];
+
+/** In the page: 1,600 directions (x, y, z) — 32 zenith rings × 48 azimuths over the upper
+ * hemisphere, and 64 within 4° of the sun — the CPU's values and the GPU's. */
+async function measure(ctor, args, api) {
+  return page.evaluate(async ({ ctor, args, api }) => {
+    const { Sky } = window.wasm;
+    const sky = Sky[ctor](...args);
+    const model = sky.model;
+    const shader = window.shaders[model];
+    const params = sky.shaderParams();
+    const [sz, sa] = [sky.sunZenith, sky.sunAzimuth];
+    const dirs = new Float32Array(1600 * 4);
+    const put = (i, t, p) => dirs.set([Math.sin(t) * Math.cos(p), Math.sin(t) * Math.sin(p), Math.cos(t), 0], 4 * i);
+    let n = 0;
+    for (let i = 0; i < 32; i++) for (let k = 0; k < 48; k++) put(n++, ((i + 0.5) / 32) * (Math.PI / 2), ((k + 0.5) / 48) * 2 * Math.PI);
+    // Near the sun: rings at 0.5°-4° around it (sun-centred frame rotated to the sun).
+    const s = [Math.sin(sz) * Math.cos(sa), Math.sin(sz) * Math.sin(sa), Math.cos(sz)];
+    const e1 = [-Math.sin(sa), Math.cos(sa), 0];
+    const e2 = [s[1] * e1[2] - s[2] * e1[1], s[2] * e1[0] - s[0] * e1[2], s[0] * e1[1] - s[1] * e1[0]];
+    for (let r = 0; r < 8; r++) for (let k = 0; k < 8; k++) {
+      const g = (0.5 + r * 0.5) * (Math.PI / 180), a = (k / 8) * 2 * Math.PI;
+      const d = [0, 1, 2].map((c) => Math.cos(g) * s[c] + Math.sin(g) * (Math.cos(a) * e1[c] + Math.sin(a) * e2[c]));
+      dirs.set([...d, 0], 4 * n++);
+    }
+    const xyz = new Float32Array(1600 * 3);
+    for (let i = 0; i < 1600; i++) xyz.set(dirs.subarray(4 * i, 4 * i + 3), 3 * i);
+    const cpu = Array.from(sky.rgbBatch(xyz));
+    sky.free();
+
+    let gpu;
+    if (api === "webgl2") {
+      const canvas = document.createElement("canvas");
+      const gl = canvas.getContext("webgl2");
+      if (!gl) throw new Error("no WebGL2");
+      if (!gl.getExtension("EXT_color_buffer_float")) throw new Error("no EXT_color_buffer_float");
+      const [w, h] = [64, 25];
+      const compile = (type, text) => {
+        const sh = gl.createShader(type);
+        gl.shaderSource(sh, text);
+        gl.compileShader(sh);
+        if (!gl.getShaderParameter(sh, gl.COMPILE_STATUS)) throw new Error(gl.getShaderInfoLog(sh));
+        return sh;
+      };
+      const prog = gl.createProgram();
+      gl.attachShader(prog, compile(gl.VERTEX_SHADER, "#version 300 es\nvoid main() { vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2)); gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0); }"));
+      gl.attachShader(prog, compile(gl.FRAGMENT_SHADER, `#version 300 es
+precision highp float;
+precision highp int;
+${shader.glsl}
+uniform highp sampler2D directions;
+out vec4 color;
+void main() {
+    vec3 d = texelFetch(directions, ivec2(gl_FragCoord.xy), 0).xyz;
+    color = vec4(sky_radiance(d), 1.0);
+}`));
+      gl.linkProgram(prog);
+      if (!gl.getProgramParameter(prog, gl.LINK_STATUS)) throw new Error(gl.getProgramInfoLog(prog));
+      gl.useProgram(prog);
+      gl.uniform4fv(gl.getUniformLocation(prog, `sky_${model}`), params);
+      const tex = gl.createTexture();
+      gl.bindTexture(gl.TEXTURE_2D, tex);
+      gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, w, h, 0, gl.RGBA, gl.FLOAT, dirs);
+      for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) gl.texParameteri(gl.TEXTURE_2D, p, gl.NEAREST);
+      gl.uniform1i(gl.getUniformLocation(prog, "directions"), 0);
+      const target = gl.createTexture();
+      gl.bindTexture(gl.TEXTURE_2D, target);
+      gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, w, h, 0, gl.RGBA, gl.FLOAT, null);
+      const fb = gl.createFramebuffer();
+      gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
+      gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, target, 0);
+      if (gl.checkFramebufferStatus(gl.FRAMEBUFFER) !== gl.FRAMEBUFFER_COMPLETE) throw new Error("float target incomplete");
+      gl.activeTexture(gl.TEXTURE0);
+      gl.bindTexture(gl.TEXTURE_2D, tex);
+      gl.viewport(0, 0, w, h);
+      gl.drawArrays(gl.TRIANGLES, 0, 3);
+      const out = new Float32Array(w * h * 4);
+      gl.readPixels(0, 0, w, h, gl.RGBA, gl.FLOAT, out);
+      gpu = Array.from(out);
+    } else {
+      const adapter = await navigator.gpu?.requestAdapter();
+      if (!adapter) throw new Error("no WebGPU adapter");
+      const device = await adapter.requestDevice();
+      const code = `${shader.wgsl}
+@group(0) @binding(1) var<storage, read> directions: array<vec4<f32>>;
+@group(0) @binding(2) var<storage, read_write> radiance: array<vec4<f32>>;
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if (i < arrayLength(&directions)) {
+        radiance[i] = vec4<f32>(sky_radiance(directions[i].xyz), 1.0);
+    }
+}`;
+      const module = device.createShaderModule({ code });
+      const info = await module.getCompilationInfo();
+      const errors = info.messages.filter((m) => m.type === "error");
+      if (errors.length) throw new Error(errors.map((m) => m.message).join("\n"));
+      const buffer = (data, usage) => {
+        const b = device.createBuffer({ size: data.byteLength, usage, mappedAtCreation: true });
+        new Float32Array(b.getMappedRange()).set(data);
+        b.unmap();
+        return b;
+      };
+      const U = GPUBufferUsage;
+      const uniforms = buffer(params, U.UNIFORM);
+      const input = buffer(dirs, U.STORAGE);
+      const output = device.createBuffer({ size: dirs.byteLength, usage: U.STORAGE | U.COPY_SRC });
+      const readback = device.createBuffer({ size: dirs.byteLength, usage: U.MAP_READ | U.COPY_DST });
+      const pipeline = device.createComputePipeline({ layout: "auto", compute: { module, entryPoint: "main" } });
+      const bind = device.createBindGroup({
+        layout: pipeline.getBindGroupLayout(0),
+        entries: [uniforms, input, output].map((buf, binding) => ({ binding, resource: { buffer: buf } })),
+      });
+      const enc = device.createCommandEncoder();
+      const pass = enc.beginComputePass();
+      pass.setPipeline(pipeline);
+      pass.setBindGroup(0, bind);
+      pass.dispatchWorkgroups(1600 / 64);
+      pass.end();
+      enc.copyBufferToBuffer(output, 0, readback, 0, dirs.byteLength);
+      device.queue.submit([enc.finish()]);
+      await readback.mapAsync(GPUMapMode.READ);
+      gpu = Array.from(new Float32Array(readback.getMappedRange()));
+      readback.unmap();
+      device.destroy();
+    }
+    return { model, cpu, gpu };
+  }, { ctor, args, api });
+}
+
+/** The worst relative difference per channel above the floor, and how many directions it
+ * covered. */
+function compare({ cpu, gpu }) {
+  const peak = Math.max(...cpu);
+  let worst = 0, at = -1, counted = 0, nonFinite = 0;
+  for (let i = 0; i < 1600; i++) {
+    let any = false;
+    for (let c = 0; c < 3; c++) {
+      const want = cpu[3 * i + c], got = gpu[4 * i + c];
+      if (!Number.isFinite(got)) nonFinite++;
+      if (want > FLOOR * peak) {
+        any = true;
+        const e = Math.abs(got - want) / want;
+        if (e > worst) [worst, at] = [e, i];
+      }
+    }
+    if (any) counted++;
+  }
+  return { worst, at, counted, nonFinite, peak };
+}
+
+for (const api of ["webgl2", "webgpu"]) {
+  test(`${api}: every model's shader agrees with sky-core to ${BOUND} relative at 1,600 directions`, async () => {
+    for (const [label, ctor, args] of SKIES) {
+      const r = compare(await measure(ctor, args, api));
+      console.log(`  ${api} ${label}: max relative difference ${r.worst.toExponential(2)} over ${r.counted} directions above ${FLOOR} of the peak (${r.peak.toPrecision(4)})`);
+      assert.equal(r.nonFinite, 0, `${label}: non-finite GPU values`);
+      assert.ok(r.counted >= 1000, `${label}: only ${r.counted} directions above the floor`);
+      assert.ok(r.worst <= BOUND, `${label}: ${r.worst} at direction ${r.at}`);
+    }
+    assert.deepEqual(problems, []);
+  });
+}

@@ -1,0 +1,378 @@
+//! The controller driven by an outdoor measurement: a synthesized day of sensor readings (a
+//! clear morning, a passing cloud, an overcast afternoon) gives finite outputs, continuous where
+//! the readings are, equal to the clear-sky outputs where the reading equals the clear-sky
+//! value; bad readings give a named error or a documented clamp over the whole f32 input space.
+
+use proptest::prelude::*;
+use sky_core::SkyError;
+use sky_core::controller::{Measurement, Step, clear_sky_illuminance, example_luminaire, step};
+use sky_core::led::Luminaire;
+use sky_core::solar::{Site, SunPosition, UtcTime};
+
+const TURBIDITY: f32 = 3.0;
+const FULL_SCALE_LUX: f32 = 10_000.0;
+
+fn vienna() -> Site {
+    Site::new(48.21, 16.37, 190.0).expect("site")
+}
+
+fn lamp() -> Luminaire<4> {
+    example_luminaire().expect("lamp")
+}
+
+/// 21 June 2026, `minute` minutes and `second` seconds after 00:00 UTC.
+fn at(minute: u32, second: f64) -> UtcTime {
+    UtcTime::new(2026, 6, 21, minute / 60, minute % 60, second).expect("time")
+}
+
+/// The synthesized sky: the reading over the clear-sky value at `t` hours UTC. Clear (exactly 1)
+/// until 08:00; a passing cloud from 08:00 to 08:30 (down to 0.4, smoothly); clear again until
+/// 10:00; clouding over until 12:00; overcast afterwards (0.25, varying by ±0.05).
+fn cloud_factor(t: f64) -> f64 {
+    use std::f64::consts::PI;
+    match t {
+        t if t < 8.0 => 1.0,
+        t if t < 8.5 => 1.0 - 0.6 * (PI * (t - 8.0) / 0.5).sin().powi(2),
+        t if t < 10.0 => 1.0,
+        t if t < 12.0 => 1.0 - 0.75 * 0.5 * (1.0 - (PI * (t - 10.0) / 2.0).cos()),
+        t => 0.25 + 0.05 * (2.0 * PI * (t - 12.0) / 3.0).sin(),
+    }
+}
+
+/// The lux reading at `time`: the clear-sky illuminance times the cloud factor (exactly the
+/// clear-sky value where the factor is 1).
+fn lux_reading(time: &UtcTime, t: f64) -> f32 {
+    let sun = SunPosition::new(time, &vienna()).expect("sun");
+    let clear = clear_sky_illuminance(&sun, TURBIDITY).expect("clear").y;
+    let f = cloud_factor(t);
+    #[allow(clippy::cast_possible_truncation)]
+    if f == 1.0 {
+        clear
+    } else {
+        (f64::from(clear) * f) as f32
+    }
+}
+
+/// The pyranometer reading at `time`: a clear-sky global irradiance of 1000 cos Z W/m² (a
+/// stand-in: sky-core has no clear-sky irradiance model), times the cloud factor.
+fn wm2_reading(time: &UtcTime, t: f64) -> f32 {
+    let sun = SunPosition::new(time, &vienna()).expect("sun");
+    let cos_z = sun.zenith_deg().to_radians().cos().max(0.0);
+    #[allow(clippy::cast_possible_truncation)]
+    let g = (1000.0 * cos_z * cloud_factor(t)) as f32;
+    g
+}
+
+fn run(time: &UtcTime, m: Option<Measurement>) -> Step {
+    step(time, &vienna(), TURBIDITY, FULL_SCALE_LUX, &lamp(), m)
+        .unwrap_or_else(|e| panic!("{time:?} {m:?}: {e}"))
+}
+
+/// Every value of a step, for finiteness and differences.
+fn values(s: &Step) -> Vec<f64> {
+    let mut v = vec![
+        f64::from(s.illuminance.x),
+        f64::from(s.illuminance.y),
+        f64::from(s.illuminance.z),
+        f64::from(s.cct.kelvin),
+        f64::from(s.cct.duv),
+    ];
+    v.extend(s.drive.levels.iter().map(|&l| f64::from(l)));
+    if let Some(w) = &s.weather {
+        v.extend([
+            f64::from(w.clear_sky_index),
+            f64::from(w.overcast_fraction),
+            f64::from(w.global_irradiance),
+        ]);
+    }
+    v
+}
+
+/// The largest change between two steps, relative for the illuminance, in kelvin for the CCT,
+/// absolute for Duv and the levels: (illuminance, CCT, Duv, levels).
+fn change(a: &Step, b: &Step) -> (f64, f64, f64, f64) {
+    let levels = a
+        .drive
+        .levels
+        .iter()
+        .zip(&b.drive.levels)
+        .map(|(x, y)| f64::from((x - y).abs()))
+        .fold(0.0, f64::max);
+    (
+        f64::from((a.illuminance.y - b.illuminance.y).abs() / a.illuminance.y.max(1e-3)),
+        f64::from((a.cct.kelvin - b.cct.kelvin).abs()),
+        f64::from((a.cct.duv - b.cct.duv).abs()),
+        levels,
+    )
+}
+
+/// Whether the outputs move continuously from `t` over the next two seconds: the change over
+/// the first second is between 30 % and 70 % of the change over two (a jump inside either
+/// second would make it near 100 % or near 0 %), for each of illuminance, CCT, Duv and levels
+/// whose two-second change is above rounding (`floor`). Returns the largest two-second changes.
+fn continuous_over_two_seconds(
+    at_offset: impl Fn(f64) -> Step,
+    floor: (f64, f64, f64, f64),
+) -> Result<(f64, f64, f64, f64), String> {
+    let (a, b, c) = (at_offset(0.0), at_offset(1.0), at_offset(2.0));
+    let (one, two) = (change(&a, &b), change(&a, &c));
+    let pairs = [
+        (one.0, two.0, floor.0),
+        (one.1, two.1, floor.1),
+        (one.2, two.2, floor.2),
+        (one.3, two.3, floor.3),
+    ];
+    for (k, (o, t, f)) in pairs.iter().enumerate() {
+        if *t > *f && !(0.3 * t..=0.7 * t).contains(o) {
+            return Err(format!("output {k}: {o:e} in the first second of {t:e}"));
+        }
+    }
+    Ok(two)
+}
+
+/// Floors of the two-second changes below which f32 rounding of the chromaticity (3e-8) and the
+/// levels dominates: relative illuminance, CCT (K), Duv, levels.
+const FLOOR: (f64, f64, f64, f64) = (1e-5, 0.2, 2e-6, 1e-5);
+
+/// A lux sensor's day, every minute from 03:00 to 19:30 UTC: outputs finite; the clear-sky
+/// step's illuminance, CCT and levels bit for bit wherever the reading is the clear-sky value;
+/// at every minute the outputs move continuously over the next two seconds.
+#[test]
+fn a_day_of_lux_readings_is_continuous_and_clear_when_the_sky_is() {
+    let (mut equal, mut largest) = (0, (0.0f64, 0.0f64, 0.0f64, 0.0f64));
+    for m in 180..=1170u32 {
+        let t = f64::from(m) / 60.0;
+        let time = at(m, 0.0);
+        let reading = lux_reading(&time, t);
+        let measured = run(&time, Some(Measurement::GlobalIlluminance(reading)));
+        assert!(
+            values(&measured).iter().all(|v| v.is_finite()),
+            "{m}: {measured:?}"
+        );
+        if cloud_factor(t) == 1.0 {
+            let clear = run(&time, None);
+            assert_eq!(measured.illuminance, clear.illuminance, "{m}");
+            assert_eq!(measured.cct, clear.cct, "{m}");
+            assert_eq!(measured.drive, clear.drive, "{m}");
+            let w = measured.weather.expect("weather");
+            assert!(
+                w.clear_sky_index == 1.0 && w.overcast_fraction == 0.0,
+                "{m}: {w:?}"
+            );
+            equal += 1;
+        }
+        let two = continuous_over_two_seconds(
+            |s| {
+                let time = at(m, s);
+                let r = lux_reading(&time, t + s / 3600.0);
+                run(&time, Some(Measurement::GlobalIlluminance(r)))
+            },
+            FLOOR,
+        )
+        .unwrap_or_else(|e| panic!("minute {m}: {e}"));
+        largest = (
+            largest.0.max(two.0),
+            largest.1.max(two.1),
+            largest.2.max(two.2),
+            largest.3.max(two.3),
+        );
+    }
+    println!(
+        "lux-driven day: {equal} clear-sky steps equal to the clear-sky outputs bit for bit; continuous at all 991 minutes (largest change in two seconds: |dE|/E {:.1e}, |dCCT| {:.1} K, |dDuv| {:.1e}, |dlevel| {:.1e})",
+        largest.0, largest.1, largest.2, largest.3
+    );
+    assert!(equal > 300);
+}
+
+/// A pyranometer's day (global only, and global with a diffuse reading): outputs finite, and
+/// continuous over two seconds wherever the sky-clearness bin does not change (the published
+/// efficacy is piecewise by bin; its steps are measured below).
+#[test]
+fn a_day_of_irradiance_readings_is_finite_and_steps_only_at_the_bins() {
+    let mut bins = std::collections::BTreeSet::new();
+    let (mut checked, mut crossing) = (0, 0);
+    for m in (180..=1170u32).step_by(2) {
+        let t = f64::from(m) / 60.0;
+        for with_diffuse in [false, true] {
+            let reading = |time: &UtcTime, t: f64| {
+                let g = wm2_reading(time, t);
+                if with_diffuse {
+                    // The diffuse share grows from half under a clear sky to all of it.
+                    #[allow(clippy::cast_possible_truncation)]
+                    let share = (0.5 + 0.5 * (1.0 - cloud_factor(t) as f32) / 0.75).min(1.0);
+                    Measurement::Irradiance {
+                        global: g,
+                        diffuse: g * share,
+                    }
+                } else {
+                    Measurement::GlobalIrradiance(g)
+                }
+            };
+            let step_at = |s: f64| {
+                let time = at(m, s);
+                run(&time, Some(reading(&time, t + s / 3600.0)))
+            };
+            let a = step_at(0.0);
+            assert!(values(&a).iter().all(|v| v.is_finite()), "{m}: {a:?}");
+            let sky_type = |s: &Step| s.weather.map(|w| w.sky_type);
+            bins.insert(sky_type(&a).unwrap_or_default());
+            if sky_type(&a) == sky_type(&step_at(2.0)) {
+                continuous_over_two_seconds(step_at, FLOOR)
+                    .unwrap_or_else(|e| panic!("minute {m}, diffuse {with_diffuse}: {e}"));
+                checked += 1;
+            } else {
+                crossing += 1;
+            }
+        }
+    }
+    println!(
+        "irradiance-driven day: sky types {bins:?}; continuous at {checked} instants, {crossing} crossing a bin edge within two seconds left out"
+    );
+    assert!(bins.len() >= 3, "{bins:?}");
+}
+
+/// The size of the steps of the Perez global efficacy where a day crosses a bin edge: printed,
+/// and bounded by 6 % (the published model is piecewise by bin).
+#[test]
+fn efficacy_steps_at_bin_edges_are_bounded() {
+    let mut worst = 0.0f64;
+    for m in 180..=1170u32 {
+        let t = f64::from(m) / 60.0;
+        let (time, later) = (at(m, 0.0), at(m, 1.0));
+        let a = run(
+            &time,
+            Some(Measurement::GlobalIrradiance(wm2_reading(&time, t))),
+        );
+        let b = run(
+            &later,
+            Some(Measurement::GlobalIrradiance(wm2_reading(
+                &later,
+                t + 1.0 / 3600.0,
+            ))),
+        );
+        if a.weather.map(|w| w.sky_type) != b.weather.map(|w| w.sky_type) {
+            worst = worst.max(change(&a, &b).0);
+        }
+    }
+    println!("largest step of the illuminance at a sky-clearness bin edge: {worst:.2e}");
+    assert!(worst < 0.06, "{worst}");
+}
+
+/// Any f32 at all (NaN, infinities, subnormals, huge, negative) as a reading, any time of the
+/// day at any site: never a panic; either a named error or finite outputs.
+fn check_step(minute: u32, lat: f64, lon: f64, m: Measurement) -> Result<(), TestCaseError> {
+    let site = Site::new(lat, lon, 0.0).expect("site");
+    let time = at(minute % 1440, 0.0);
+    match step(&time, &site, TURBIDITY, FULL_SCALE_LUX, &lamp(), Some(m)) {
+        Ok(s) => prop_assert!(values(&s).iter().all(|v| v.is_finite()), "{s:?}"),
+        Err(SkyError::NotFinite { parameter } | SkyError::OutOfRange { parameter, .. }) => {
+            prop_assert!(
+                parameter.contains("irradiance") || parameter.contains("illuminance"),
+                "{parameter}"
+            );
+        }
+        Err(e) => prop_assert!(false, "unexpected error {e}"),
+    }
+    Ok(())
+}
+
+fn any_f32() -> impl Strategy<Value = f32> {
+    prop_oneof![
+        any::<u32>().prop_map(f32::from_bits),
+        -10.0f32..200_000.0,
+        Just(f32::NAN),
+        Just(f32::INFINITY),
+        Just(f32::NEG_INFINITY),
+        Just(-0.0f32),
+        Just(f32::MIN_POSITIVE / 8.0),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 400, failure_persistence: None, ..ProptestConfig::default() })]
+
+    #[test]
+    fn bad_readings_never_panic(
+        minute in 0u32..1440,
+        lat in -90.0f64..=90.0,
+        lon in -180.0f64..=180.0,
+        a in any_f32(),
+        b in any_f32(),
+        kind in 0u8..3,
+    ) {
+        let m = match kind {
+            0 => Measurement::GlobalIlluminance(a),
+            1 => Measurement::GlobalIrradiance(a),
+            _ => Measurement::Irradiance { global: a, diffuse: b },
+        };
+        check_step(minute, lat, lon, m)?;
+    }
+
+    #[test]
+    fn readings_at_any_sun_zenith_never_panic(zenith in any_f32(), a in any_f32(), b in any_f32()) {
+        for m in [
+            Measurement::GlobalIlluminance(a),
+            Measurement::GlobalIrradiance(a),
+            Measurement::Irradiance { global: a, diffuse: b },
+        ] {
+            if let Ok(r) = m.read(zenith, 172) {
+                let v = [r.global_illuminance, r.global_irradiance, r.diffuse_irradiance,
+                    r.direct_normal_irradiance, r.diffuse_illuminance(zenith)];
+                prop_assert!(v.iter().all(|x| x.is_finite() && *x >= 0.0), "{zenith} {m:?}: {r:?}");
+            }
+        }
+    }
+}
+
+/// The named errors of the brief's bad readings.
+#[test]
+fn bad_readings_have_named_errors_or_documented_clamps() {
+    let noon = at(11 * 60, 0.0);
+    let night = at(23 * 60, 0.0);
+    let err =
+        |time: &UtcTime, m| step(time, &vienna(), TURBIDITY, FULL_SCALE_LUX, &lamp(), Some(m));
+    // NaN: not finite, named.
+    assert!(matches!(
+        err(&noon, Measurement::GlobalIlluminance(f32::NAN)),
+        Err(SkyError::NotFinite {
+            parameter: "global illuminance [lx]"
+        })
+    ));
+    // Negative: counted as 0 (a sensor's dark offset).
+    let dark = err(&noon, Measurement::GlobalIrradiance(-3.0)).expect("clamped");
+    assert_eq!(dark.illuminance.y, 0.0);
+    // Diffuse above global: named.
+    assert!(matches!(
+        err(
+            &noon,
+            Measurement::Irradiance {
+                global: 300.0,
+                diffuse: 350.0
+            }
+        ),
+        Err(SkyError::OutOfRange {
+            parameter: "diffuse irradiance [W/m²]",
+            ..
+        })
+    ));
+    // Far above the extraterrestrial value: named.
+    assert!(matches!(
+        err(&noon, Measurement::GlobalIrradiance(5_000.0)),
+        Err(SkyError::OutOfRange {
+            parameter: "global irradiance [W/m²]",
+            ..
+        })
+    ));
+    assert!(matches!(
+        err(&noon, Measurement::GlobalIlluminance(1e7)),
+        Err(SkyError::OutOfRange {
+            parameter: "global illuminance [lx]",
+            ..
+        })
+    ));
+    // A reading at night: used as it is, no sky type.
+    let s = err(&night, Measurement::GlobalIlluminance(5.0)).expect("night");
+    assert_eq!(s.illuminance.y, 5.0);
+    assert_eq!(s.weather.expect("weather").sky_type, 0);
+    assert!(values(&s).iter().all(|v| v.is_finite()));
+}

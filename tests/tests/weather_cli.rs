@@ -1,0 +1,495 @@
+//! `sky-train sample --model cie|perez` and `sky-train schedule --measurements` against the
+//! independent f64 references of `sky_tests::reference::weather`, driven in-process, and their
+//! one-line errors for bad input.
+
+use std::f64::consts::{FRAC_PI_2, PI};
+use std::io::Write as _;
+
+use clap::Parser;
+use sky_tests::fixtures::num;
+use sky_tests::reference::weather as reference;
+use sky_train::cli::{self, Cli};
+
+/// Runs a command line with `input` on stdin: stdout, or the error's text and whether it is a
+/// parameter error (exit status 2).
+fn run(args: &[&str], input: &str) -> Result<String, (String, bool)> {
+    let cli = Cli::try_parse_from(std::iter::once("sky-train").chain(args.iter().copied()))
+        .map_err(|e| (e.to_string(), true))?;
+    let mut output = Vec::new();
+    cli::execute(cli.command, &mut input.as_bytes(), &mut output)
+        .map_err(|e| (format!("{e:#}"), e.is::<sky_train::sources::ParamError>()))?;
+    Ok(String::from_utf8(output).expect("UTF-8"))
+}
+
+/// `schedule --measurements FILE` at Vienna.
+fn schedule_vienna(file: &str) -> Result<String, (String, bool)> {
+    run(
+        &[
+            "schedule",
+            "--lat",
+            "48.21",
+            "--lon",
+            "16.37",
+            "--measurements",
+            file,
+        ],
+        "",
+    )
+}
+
+/// The views of the sample comparisons, degrees: every 10° in zenith to 80° and 89°, every
+/// 30° in azimuth.
+fn views() -> Vec<(f64, f64)> {
+    let mut v = Vec::new();
+    for z in [0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80.0, 89.0] {
+        for k in 0..12 {
+            v.push((z, 30.0 * f64::from(k)));
+        }
+    }
+    v
+}
+
+/// `sample`'s Y column at `views`, in order.
+fn sampled_luminance(args: &[&str], views: &[(f64, f64)]) -> Vec<f64> {
+    let input: String = views.iter().map(|(z, a)| format!("{z},{a}\n")).collect();
+    let out = run(args, &input).unwrap_or_else(|e| panic!("{args:?}: {}", e.0));
+    let mut lines = out.lines();
+    assert_eq!(
+        lines.next(),
+        Some("view_zenith_deg,view_azimuth_deg,Y,x,y,R,G,B")
+    );
+    lines
+        .map(|l| num(l.split(',').nth(2).expect("Y")))
+        .collect()
+}
+
+/// ∫ L cos θ dω of the reference luminance `l(θ, φ)` by the midpoint rule on a 0.25° grid.
+fn reference_integral(l: impl Fn(f64, f64) -> f64) -> f64 {
+    let (rows, cols) = (360usize, 1440usize);
+    let (dt, dp) = (FRAC_PI_2 / rows as f64, 2.0 * PI / cols as f64);
+    let mut sum = 0.0;
+    for j in 0..rows {
+        let t = (j as f64 + 0.5) * dt;
+        let omega = dp * ((t - 0.5 * dt).cos() - (t + 0.5 * dt).cos());
+        for i in 0..cols {
+            sum += l(t, (i as f64 + 0.5) * dp) * t.cos() * omega;
+        }
+    }
+    sum
+}
+
+/// `sample --model cie`: every type, two suns, scaled to a diffuse illuminance; the luminance
+/// relative to the zenith within 1e-4 of the reference, the absolute level within 0.5 % of the
+/// reference integrated by brute force.
+#[test]
+fn sample_cie_agrees_with_the_reference() {
+    let views = views();
+    let (mut shape, mut level) = (0.0f64, 0.0f64);
+    for sky_type in 1..=15usize {
+        for (zs, az) in [(30.0f64, 40.0f64), (75.0, 200.0)] {
+            let t = sky_type.to_string();
+            let (zs_s, az_s) = (zs.to_string(), az.to_string());
+            let got = sampled_luminance(
+                &[
+                    "sample",
+                    "--model",
+                    "cie",
+                    "--cie-type",
+                    &t,
+                    "--sun-zenith",
+                    &zs_s,
+                    "--sun-azimuth",
+                    &az_s,
+                    "--diffuse-lux",
+                    "20000",
+                ],
+                &views,
+            );
+            let (zr, ar) = (zs.to_radians(), az.to_radians());
+            let rel_l = |t: f64, p: f64| reference::cie_relative(sky_type, t, p, zr, ar);
+            let lz = 20_000.0 / reference_integral(rel_l);
+            level = level.max((got[0] - lz).abs() / lz);
+            for ((z, a), g) in views.iter().zip(&got) {
+                let want = rel_l(z.to_radians(), a.to_radians());
+                shape = shape.max((g / got[0] - want).abs() / want);
+            }
+        }
+    }
+    println!(
+        "sample --model cie: relative luminance within {shape:.2e}, zenith level within {level:.2e}"
+    );
+    assert!(shape < 1e-4 && level < 5e-3);
+}
+
+/// `sample --model perez --ghi --dhi` (and `--ghi` alone, split by the reference's Erbs): the
+/// sky condition, the diffuse illuminance (diffuse efficacy) and the distribution of the
+/// reference chain, integrated by brute force: luminance within 0.5 % absolute, and relative to
+/// the brightest view within 1e-4 (or 1 % of that view's value where fainter).
+#[test]
+fn sample_perez_agrees_with_the_reference() {
+    let views = views();
+    let (mut worst_shape, mut worst_level) = (0.0f64, 0.0f64);
+    // (sun zenith, azimuth, global, diffuse; diffuse < 0: from Erbs)
+    let cases = [
+        (35.0f64, 10.0f64, 700.0f64, 110.0f64),
+        (35.0, 10.0, 420.0, 260.0),
+        (60.0, 250.0, 300.0, 290.0),
+        (70.0, 120.0, 250.0, -1.0),
+        (20.0, 300.0, 850.0, -1.0),
+        (50.0, 0.0, 180.0, -1.0),
+    ];
+    let day = 80u32; // the default of `--model perez` without --time
+    for (zs, az, g, d) in cases {
+        let z = zs.to_radians();
+        let d_used = if d < 0.0 {
+            let kt = g / (reference::extraterrestrial(day) * z.cos());
+            reference::erbs(kt) * g
+        } else {
+            d
+        };
+        let i = (g - d_used) / z.cos();
+        let epsilon = reference::sky_clearness(d_used, i, z);
+        let delta = reference::sky_brightness(d_used, z, day);
+        let [_, k_diffuse, _] = reference::efficacies(epsilon, delta, z, 2.0);
+        let coefficients = reference::all_weather(epsilon, delta, z);
+        let az_r = az.to_radians();
+        let rel_l = |t: f64, p: f64| reference::all_weather_luminance(coefficients, t, p, z, az_r);
+        let scale = d_used * k_diffuse / reference_integral(rel_l);
+        let (zs_s, az_s, g_s, d_s) = (zs.to_string(), az.to_string(), g.to_string(), d.to_string());
+        let mut args = vec![
+            "sample",
+            "--model",
+            "perez",
+            "--sun-zenith",
+            &zs_s,
+            "--sun-azimuth",
+            &az_s,
+            "--ghi",
+            &g_s,
+        ];
+        if d >= 0.0 {
+            args.extend(["--dhi", &d_s]);
+        }
+        let got = sampled_luminance(&args, &views);
+        let want: Vec<f64> = views
+            .iter()
+            .map(|(t, p)| scale * rel_l(t.to_radians(), p.to_radians()))
+            .collect();
+        let (k, peak) = want
+            .iter()
+            .enumerate()
+            .fold((0, 0.0), |m, (k, &v)| if v > m.1 { (k, v) } else { m });
+        for (g, w) in got.iter().zip(&want) {
+            worst_level = worst_level.max((g - w).abs() / w.max(1e-2 * peak));
+            let shape = (g / got[k] - w / peak).abs() / (w / peak).max(1e-2);
+            worst_shape = worst_shape.max(shape);
+        }
+    }
+    println!(
+        "sample --model perez: luminance within {worst_level:.2e} of the reference chain, shape within {worst_shape:.2e}"
+    );
+    assert!(worst_level < 5e-3 && worst_shape < 1e-4);
+}
+
+/// `schedule --measurements` with pyranometer readings: the two new columns and the
+/// illuminance against the reference chain (Erbs, ε and Δ, Perez's global efficacy with
+/// 2 cm of water): the sky type equal to the reference's bin, the illuminance within 1e-4.
+#[test]
+fn schedule_measurements_agree_with_the_reference() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("readings.csv");
+    let readings = [
+        ("2026-06-21T05:00:00Z", 150.0f64, None),
+        ("2026-06-21T07:30:00Z", 520.0, None),
+        ("2026-06-21T09:00:00Z", 760.0, Some(120.0f64)),
+        ("2026-06-21T10:30:00Z", 880.0, None),
+        ("2026-06-21T12:00:00Z", 320.0, Some(300.0)),
+        ("2026-06-21T14:00:00Z", 610.0, Some(240.0)),
+        ("2026-06-21T17:15:00Z", 95.0, None),
+    ];
+    let mut f = std::fs::File::create(&path).expect("file");
+    writeln!(f, "utc,ghi_wm2,dhi_wm2").expect("write");
+    for (t, g, d) in readings {
+        writeln!(f, "{t},{g},{}", d.map_or(String::new(), |v| v.to_string())).expect("write");
+    }
+    drop(f);
+    // A file with a dhi_wm2 column needs every row to have one: the first row has none.
+    let (message, param) =
+        schedule_vienna(path.to_str().expect("utf8")).expect_err("an empty dhi field");
+    assert!(
+        param && message.contains("line 2") && message.contains("dhi_wm2"),
+        "{message}"
+    );
+
+    // Global only: split by Erbs.
+    let global = dir.path().join("global.csv");
+    let mut f = std::fs::File::create(&global).expect("file");
+    writeln!(f, "ghi_wm2,utc").expect("write");
+    for (t, g, _) in readings {
+        writeln!(f, "{g},{t}").expect("write");
+    }
+    drop(f);
+    let out = schedule_vienna(global.to_str().expect("utf8")).unwrap_or_else(|e| panic!("{}", e.0));
+    let mut lines = out.lines();
+    let header: Vec<&str> = lines.next().expect("header").split(',').collect();
+    assert_eq!(&header[12..], ["sky_type", "clear_sky_index"]);
+    let mut worst = 0.0f64;
+    for (line, (t, g, _)) in lines.zip(readings) {
+        let f: Vec<&str> = line.split(',').collect();
+        assert_eq!(f[0], t);
+        let z = num(f[1]).to_radians();
+        let day = 172u32; // 21 June 2026
+        let kt = g / (reference::extraterrestrial(day) * z.cos().max(0.065));
+        let d = reference::erbs(kt.min(1.0)) * g;
+        let i = (g - d) / z.cos();
+        let epsilon = reference::sky_clearness(d, i, z);
+        let delta = reference::sky_brightness(d, z, day);
+        let [k_global, _, _] = reference::efficacies(epsilon, delta, z, 2.0);
+        let lux = g * k_global;
+        worst = worst.max((num(f[7]) - lux).abs() / lux);
+        assert_eq!(f[12], (reference::bin(epsilon) + 1).to_string(), "{line}");
+        let index = num(f[13]);
+        assert!(index.is_finite() && index > 0.0, "{line}");
+    }
+    println!(
+        "schedule --measurements (ghi): illuminance within {worst:.2e} of the reference chain"
+    );
+    assert!(worst < 1e-4);
+}
+
+/// `schedule --measurements` with lux readings equal to the clear-sky schedule's horizontal
+/// illuminance gives the clear-sky schedule's rows (and clear_sky_index 1).
+#[test]
+fn schedule_measurements_at_the_clear_sky_level_give_the_clear_sky_rows() {
+    let clear = run(
+        &[
+            "schedule",
+            "--lat",
+            "48.21",
+            "--lon",
+            "16.37",
+            "--date",
+            "2026-03-20",
+            "--step",
+            "60",
+        ],
+        "",
+    )
+    .unwrap_or_else(|e| panic!("{}", e.0));
+    let rows: Vec<Vec<&str>> = clear
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("lux.csv");
+    let mut f = std::fs::File::create(&path).expect("file");
+    writeln!(f, "utc,global_lux").expect("write");
+    for r in &rows {
+        // The clear-sky value as the controller computes it (the printed column is rounded).
+        let time =
+            sky_core::solar::UtcTime::new(2026, 3, 20, r[0][11..13].parse().expect("hour"), 0, 0.0)
+                .expect("time");
+        let site = sky_core::solar::Site::new(48.21, 16.37, 0.0).expect("site");
+        let sun = sky_core::solar::SunPosition::new(&time, &site).expect("sun");
+        let e = sky_core::controller::clear_sky_illuminance(&sun, 3.0)
+            .expect("clear")
+            .y;
+        writeln!(f, "{},{e:e}", r[0]).expect("write");
+    }
+    drop(f);
+    let measured =
+        schedule_vienna(path.to_str().expect("utf8")).unwrap_or_else(|e| panic!("{}", e.0));
+    for (m, c) in measured.lines().skip(1).zip(&rows) {
+        let m: Vec<&str> = m.split(',').collect();
+        assert_eq!(&m[..12], &c[..], "{m:?}");
+        assert_eq!(num(m[13]), 1.0, "{m:?}");
+    }
+}
+
+/// Bad measurement files: one line naming the file, the line or the column, exit status 2.
+#[test]
+fn bad_measurement_files_name_the_problem() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let cases = [
+        ("utc,lux\n2026-06-21T12:00:00Z,5\n", "needs the columns"),
+        (
+            "utc,global_lux,ghi_wm2\n2026-06-21T12:00:00Z,5,3\n",
+            "needs the columns",
+        ),
+        ("utc,global_lux\n2026-06-21 12:00,5\n", "line 2"),
+        (
+            "utc,global_lux\n2026-06-21T12:00:00Z,bright\n",
+            "`bright` is not a number",
+        ),
+        (
+            "utc,global_lux\n2026-06-21T12:00:00Z,NaN\n",
+            "global illuminance must be a finite number",
+        ),
+        (
+            "utc,ghi_wm2\n2026-06-21T12:00:00Z,4000\n",
+            "global irradiance = 4000 W/m²",
+        ),
+        (
+            "utc,ghi_wm2,dhi_wm2\n2026-06-21T12:00:00Z,300,400\n",
+            "diffuse irradiance = 400 W/m²",
+        ),
+        ("", "empty"),
+    ];
+    for (k, (text, want)) in cases.iter().enumerate() {
+        let path = dir.path().join(format!("bad{k}.csv"));
+        std::fs::write(&path, text).expect("write");
+        let (message, param) = schedule_vienna(path.to_str().expect("utf8")).expect_err(text);
+        assert!(param, "{message}");
+        assert!(message.contains(want), "{text:?}: {message}");
+        assert_eq!(message.lines().count(), 1, "{message}");
+    }
+    let missing = run(
+        &[
+            "schedule",
+            "--lat",
+            "0",
+            "--lon",
+            "0",
+            "--measurements",
+            "/nonexistent/readings.csv",
+        ],
+        "",
+    )
+    .expect_err("missing file");
+    assert!(
+        missing.1 && missing.0.contains("/nonexistent/readings.csv"),
+        "{}",
+        missing.0
+    );
+    // --date and --step belong to the clear-sky schedule.
+    let both = run(
+        &[
+            "schedule",
+            "--lat",
+            "0",
+            "--lon",
+            "0",
+            "--date",
+            "2026-01-01",
+            "--measurements",
+            "x.csv",
+        ],
+        "",
+    )
+    .expect_err("conflict");
+    assert!(both.0.contains("cannot be used with"), "{}", both.0);
+}
+
+/// `sample` with the weather models' flags: bad input named.
+#[test]
+fn bad_weather_flags_are_named() {
+    let cases: [(&[&str], &str); 8] = [
+        (
+            &["sample", "--model", "cie", "--sun-zenith", "30"],
+            "--cie-type",
+        ),
+        (
+            &[
+                "sample",
+                "--model",
+                "cie",
+                "--cie-type",
+                "16",
+                "--sun-zenith",
+                "30",
+            ],
+            "--cie-type",
+        ),
+        (
+            &[
+                "sample",
+                "--model",
+                "cie",
+                "--cie-type",
+                "3",
+                "--sun-zenith",
+                "95",
+            ],
+            "--sun-zenith",
+        ),
+        (
+            &["sample", "--model", "perez", "--sun-zenith", "30"],
+            "--ghi",
+        ),
+        (
+            &[
+                "sample",
+                "--model",
+                "perez",
+                "--sun-zenith",
+                "30",
+                "--dhi",
+                "50",
+            ],
+            "--dhi needs --ghi",
+        ),
+        (
+            &[
+                "sample",
+                "--model",
+                "perez",
+                "--sun-zenith",
+                "30",
+                "--ghi",
+                "300",
+                "--dhi",
+                "400",
+            ],
+            "--dhi 400",
+        ),
+        (
+            &[
+                "sample",
+                "--model",
+                "preetham",
+                "--sun-zenith",
+                "30",
+                "--cie-type",
+                "3",
+            ],
+            "--cie-type does not apply",
+        ),
+        (
+            &[
+                "sample",
+                "--model",
+                "cie",
+                "--cie-type",
+                "3",
+                "--time",
+                "2026-06-21T12:00:00Z",
+            ],
+            "--lat and --lon",
+        ),
+    ];
+    for (args, want) in cases {
+        let (message, param) = run(args, "0,0\n").expect_err(want);
+        assert!(param, "{args:?}: {message}");
+        assert!(message.contains(want), "{args:?}: {message}");
+    }
+    // The sun from a time and place.
+    let out = run(
+        &[
+            "sample",
+            "--model",
+            "cie",
+            "--cie-type",
+            "12",
+            "--time",
+            "2026-06-21T10:00:00Z",
+            "--lat",
+            "48.21",
+            "--lon",
+            "16.37",
+        ],
+        "0,0\n",
+    )
+    .unwrap_or_else(|e| panic!("{}", e.0));
+    assert_eq!(out.lines().count(), 2);
+}
