@@ -82,6 +82,15 @@ if [ "$("$bindgen" --version 2>/dev/null)" != "wasm-bindgen $bindgen_version" ] 
   cargo install -q wasm-bindgen-cli --version "=$bindgen_version" --root "$tools/wasm-bindgen" --force
 fi
 
+# cargo-fuzz (libFuzzer's driver) for scripts/fuzz.sh, into .tools/cargo-fuzz; replaced when
+# another version is there.
+fuzz_version=0.13.2
+cargo_fuzz="$tools/cargo-fuzz/bin/cargo-fuzz"
+if [ "$("$cargo_fuzz" --version 2>/dev/null)" != "cargo-fuzz $fuzz_version" ]; then
+  echo "setup: cargo install cargo-fuzz $fuzz_version into .tools/cargo-fuzz (a few minutes)"
+  cargo install -q cargo-fuzz --version "=$fuzz_version" --root "$tools/cargo-fuzz" --force
+fi
+
 # playwright-core drives Debian's chromium; it must never download a browser of its own.
 export PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1
 stamp="$root/sky-wasm/node_modules/.package-lock.stamp"
@@ -94,5 +103,6 @@ fi
 "$tools/qemu/usr/bin/qemu-system-arm" --version | head -n 1
 "$bindgen" --version
 "$test_runner" --version
+"$cargo_fuzz" --version
 /usr/bin/chromium --version 2>/dev/null | head -n 1
 /usr/bin/rustc --version

@@ -14,7 +14,7 @@ fn main() -> Result<(), SkyError> {
     println!("UTC    sun elevation   horizontal lux   CCT (K)   R     G     B     W");
     for hour in (0..24).step_by(2) {
         let time = UtcTime::new(2026, 6, 21, hour, 0, 0.0)?;
-        let s = step(&time, &site, 3.0, 10_000.0, &lamp)?; // turbidity 3, full output at 10,000 lx
+        let s = step(&time, &site, 3.0, 10_000.0, &lamp, None)?; // turbidity 3, full output at 10,000 lx
         let [r, g, b, w] = s.drive.levels;
         println!(
             "{hour:02}:00  {:>10.2}°   {:>14.1}   {:>7.0}   {r:.3} {g:.3} {b:.3} {w:.3}",

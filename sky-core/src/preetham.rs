@@ -336,7 +336,9 @@ impl PreethamSky {
         let cross2 = dir.cross(s).length_squared();
         let sin_gamma = cross2 * math::rsqrt(cross2);
         let gamma = math::atan2(sin_gamma, cos_gamma);
-        let inv_cos_theta = 1.0 / math::at_least(dir.z, MIN_COS_THETA);
+        // cos θ ≤ 1 also for a vector too long for f32's squares, which is not unit length
+        // after the normalisation (the Perez function is only defined for cos θ in (0, 1]).
+        let inv_cos_theta = 1.0 / math::at_least(math::at_most(dir.z, 1.0), MIN_COS_THETA);
         let cos2_gamma = cos_gamma * cos_gamma;
         let f = |c: usize| {
             self.scale[c] * self.perez_log2[c].evaluate_log2(inv_cos_theta, gamma, cos2_gamma)

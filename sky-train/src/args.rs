@@ -6,9 +6,8 @@
 //! (`#[arg(value_parser = args::latitude)]`); clap puts the flag's name before their message.
 
 use std::fmt;
-use std::io::BufRead;
 
-use anyhow::{Context, Result, bail};
+use anyhow::Result;
 use sky_core::solar::UtcTime;
 
 /// A parameter the user gave that the model rejects, phrased in the command line's terms.
@@ -223,26 +222,4 @@ pub fn duration_minutes(s: &str) -> Result<f64, String> {
         Ok(v) if (1.0 / 60.0..=1440.0).contains(&(v * factor)) => Ok(v * factor),
         _ => Err(format!("`{s}`: expected a duration from 1s to 24h")),
     }
-}
-
-/// The non-blank lines of `input` as (1-based line number, first field, second field), each
-/// line exactly two comma-separated fields named by `columns` (e.g. `x,y`) in the error.
-///
-/// # Errors
-/// An unreadable input, or a line without exactly two fields.
-pub fn stdin_pairs(input: &mut dyn BufRead, columns: &str) -> Result<Vec<(usize, String, String)>> {
-    let mut pairs = Vec::new();
-    for (n, line) in input.lines().enumerate() {
-        let line = line.context("cannot read stdin")?;
-        let line = line.trim();
-        if line.is_empty() {
-            continue;
-        }
-        let mut fields = line.split(',').map(str::trim);
-        let (Some(a), Some(b), None) = (fields.next(), fields.next(), fields.next()) else {
-            bail!("stdin line {}: expected `{columns}`, got `{line}`", n + 1);
-        };
-        pairs.push((n + 1, a.to_owned(), b.to_owned()));
-    }
-    Ok(pairs)
 }

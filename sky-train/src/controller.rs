@@ -5,7 +5,7 @@
 
 use std::io::{BufRead, Write};
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use std::path::Path;
 
 use sky_core::cct;
@@ -14,7 +14,7 @@ use sky_core::solar::{Site, UtcTime};
 
 use crate::captures::manifest::UnixTime;
 
-use crate::args::{ParamError, stdin_pairs};
+use crate::args::ParamError;
 
 /// What `schedule` needs.
 #[derive(Debug, Clone, Copy)]
@@ -230,29 +230,28 @@ pub fn schedule(config: &ScheduleConfig, output: &mut dyn Write) -> Result<()> {
     Ok(())
 }
 
-/// Reads `x,y` lines (a header line is allowed; blank lines are skipped) and writes
-/// `x,y,cct_k,duv`.
+/// Reads `x,y` lines ([`crate::csv_input`]: a header line `x,y` is allowed, blank lines are
+/// skipped) and writes `x,y,cct_k,duv`, a line at a time.
 ///
 /// # Errors
-/// A line that is not two numbers, or a chromaticity without a CCT, named by its line number.
+/// A line that is not two finite numbers, or a chromaticity without a CCT, named by its line
+/// number.
 pub fn cct_lines(input: &mut dyn BufRead, output: &mut dyn Write) -> Result<()> {
     writeln!(output, "x,y,cct_k,duv")?;
-    for (n, x, y) in stdin_pairs(input, "x,y")? {
-        let (xv, yv) = match (x.parse::<f32>(), y.parse::<f32>()) {
-            (Ok(a), Ok(b)) => (a, b),
-            _ if n == 1 => continue, // a header line
-            _ => bail!(
-                "stdin line {n}: x and y must be numbers (CIE 1931 chromaticity), got `{x},{y}`"
-            ),
-        };
-        let c = cct::cct_duv(xv, yv).map_err(|e| {
+    for row in crate::csv_input::rows(input, ["x", "y"]) {
+        let row = row?;
+        #[allow(clippy::cast_possible_truncation)] // sky-core's chromaticities are f32
+        let [x, y] = row.values.map(|v| v as f32);
+        let c = cct::cct_duv(x, y).map_err(|e| {
             ParamError(format!(
-                "stdin line {n}: {e} (x in [0, 1], y in (0, 1], CCT {}-{} K)",
+                "stdin line {}: {e} (x in [0, 1], y in (0, 1], CCT {}-{} K)",
+                row.line,
                 cct::MIN_CCT,
                 cct::MAX_CCT
             ))
         })?;
-        writeln!(output, "{x},{y},{:.3},{:.7}", c.kelvin, c.duv)?;
+        let [xs, ys] = &row.text;
+        writeln!(output, "{xs},{ys},{:.3},{:.7}", c.kelvin, c.duv)?;
     }
     Ok(())
 }

@@ -137,12 +137,20 @@ pub fn encode<const H: usize>(weights: &NeuralWeights<H>) -> Result<Vec<u8>> {
     Ok(bytes)
 }
 
-/// Writes `weights` as a weight file, atomically.
+/// Writes `weights` as a weight file, atomically: the bytes are decoded again and written only
+/// when they decode (every float finite, a valid header), so that a file a reader would refuse
+/// never replaces the one at `path`.
 ///
 /// # Errors
-/// On I/O errors.
+/// When the weights do not make a valid file (nothing is written then), or on I/O errors.
 pub fn write_weights<const H: usize>(path: &Path, weights: &NeuralWeights<H>) -> Result<()> {
     let bytes = encode(weights)?;
+    NeuralWeights::<H>::decode(&bytes).map_err(|e| {
+        anyhow::anyhow!(
+            "{}: not written: the network does not make a valid weight file ({e})",
+            path.display()
+        )
+    })?;
     write_atomically(path, |f| Ok(std::io::Write::write_all(f, &bytes)?))
 }
 
@@ -151,7 +159,24 @@ pub fn write_weights<const H: usize>(path: &Path, weights: &NeuralWeights<H>) ->
 /// # Errors
 /// When the file cannot be read or does not decode (the error says why).
 pub fn read_weights<const H: usize>(path: &Path) -> Result<NeuralWeights<H>> {
-    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    use std::io::Read;
+    let needed = NeuralWeights::<H>::ENCODED_LEN;
+    let file =
+        std::fs::File::open(path).with_context(|| format!("cannot read {}", path.display()))?;
+    if let Ok(len) = file.metadata().map(|m| m.len())
+        && len > needed as u64
+    {
+        bail!(
+            "{}: {len} bytes, but a 6-{H}-3 weight file has {needed}",
+            path.display()
+        );
+    }
+    // At most one byte more than a file of this shape (a device or a growing file reports no
+    // length), so that a longer file is never read whole.
+    let mut bytes = Vec::new();
+    file.take(needed as u64 + 1)
+        .read_to_end(&mut bytes)
+        .with_context(|| format!("cannot read {}", path.display()))?;
     NeuralWeights::decode(&bytes).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
 }
 
@@ -265,6 +290,9 @@ pub fn fixed_rust_source<const H: usize>(
     s
 }
 
+/// The source name as the contents of a Rust byte string: NUL as `\0`, every other byte that
+/// is not printable ASCII, and `"` and `\`, escaped (`escape_ascii`), so that no weight file
+/// can end the string.
 fn escape_source(source: &[u8; 32]) -> String {
     source
         .iter()
@@ -272,41 +300,67 @@ fn escape_source(source: &[u8; 32]) -> String {
             if b == 0 {
                 "\\0".to_string()
             } else {
-                (b as char).to_string()
+                b.escape_ascii().to_string()
             }
         })
         .collect()
 }
 
+/// Checks that `name` can be a generated constant's name: an upper-case Rust identifier
+/// (`A`-`Z`, then `A`-`Z`, `0`-`9` or `_`, at most 64 characters), so that it is written into
+/// the source as it is and never changes the code around it.
+///
+/// # Errors
+/// Otherwise, naming `--name` and what it may hold.
+pub fn check_const_name(name: &str) -> Result<()> {
+    let mut chars = name.chars();
+    let valid = chars.next().is_some_and(|c| c.is_ascii_uppercase())
+        && chars.all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_')
+        && name.len() <= 64;
+    if !valid {
+        return Err(crate::args::ParamError(format!(
+            "--name {:?}: expected an upper-case Rust identifier (A-Z, then A-Z, 0-9 or _, at most 64 characters), e.g. PREETHAM",
+            name
+        ))
+        .into());
+    }
+    Ok(())
+}
+
 /// The generated file of a shipped network: [`rust_source`] with the provenance and the
 /// command that regenerates it.
-#[must_use]
+///
+/// # Errors
+/// When `name` is not a constant's name ([`check_const_name`]).
 pub fn pretrained_source<const H: usize>(
     weights: &NeuralWeights<H>,
     name: &str,
     weights_path: &Path,
-) -> String {
+) -> Result<String> {
+    check_const_name(name)?;
     let file = file_name(weights_path);
-    rust_source(
+    Ok(rust_source(
         weights,
         name,
         &format!(
             "sky-train export --weights sky-core/weights/{file} --name {name} --out <this file>"
         ),
         &provenance(weights, &file),
-    )
+    ))
 }
 
 /// The generated file of a shipped network quantised for [`sky_core::neural::FixedNeuralSky`]:
 /// [`fixed_rust_source`] with the provenance and the command that regenerates it.
 ///
 /// # Errors
-/// When the weights do not fit the fixed-point format (the error names the value).
+/// When `name` is not a constant's name ([`check_const_name`]) or the weights do not fit the
+/// fixed-point format (the error names the value).
 pub fn pretrained_fixed_source<const H: usize>(
     weights: &NeuralWeights<H>,
     name: &str,
     weights_path: &Path,
 ) -> Result<String> {
+    check_const_name(name)?;
     let fixed = FixedNeuralWeights::quantise(weights)
         .map_err(|e| anyhow::anyhow!("{}: cannot quantise: {e}", weights_path.display()))?;
     let file = file_name(weights_path);
@@ -325,9 +379,15 @@ pub fn pretrained_fixed_source<const H: usize>(
     ))
 }
 
+/// The file name of `path` for a generated comment: anything but printable ASCII escaped (a
+/// newline in a file name would end the comment and start code).
 fn file_name(path: &Path) -> String {
-    path.file_name()
-        .map_or_else(String::new, |f| f.to_string_lossy().into_owned())
+    path.file_name().map_or_else(String::new, |f| {
+        f.to_string_lossy()
+            .chars()
+            .flat_map(char::escape_default)
+            .collect()
+    })
 }
 
 /// The doc lines of a shipped network's constant: what it was trained on, and from which file.

@@ -150,25 +150,90 @@ fn encode_8bit(linear: f32) -> u8 {
     (color::srgb_encode(linear) * 255.0 + 0.5) as u8
 }
 
-/// Reads an OpenEXR file's R, G, B channels (any sample type) as linear RGB.
+/// The largest image read (an OpenEXR frame by [`read_exr`], a capture mask): 8192 × 4096
+/// pixels (2²⁵), which take 384 MiB as linear RGB f32. A file's header can claim any size (an
+/// OpenEXR data window is two pairs of 32-bit corners) whatever the file's length, so the size
+/// is checked from the header before anything of the image is allocated.
+pub const MAX_IMAGE_PIXELS: usize = 8192 * 4096;
+
+/// Checks that an image of `width` × `height` pixels is at most [`MAX_IMAGE_PIXELS`].
 ///
 /// # Errors
-/// When the file cannot be read, is not OpenEXR, or lacks R, G or B.
+/// When it is larger, naming the size, the limit and the memory it would take.
+pub fn check_image_size(width: usize, height: usize) -> Result<()> {
+    let pixels = width.saturating_mul(height);
+    if pixels > MAX_IMAGE_PIXELS {
+        #[allow(clippy::cast_precision_loss)] // a size in GiB for the message
+        let gib = pixels as f64 * 12.0 / f64::from(1u32 << 30);
+        bail!(
+            "the header claims {width}x{height} pixels ({gib:.1} GiB as RGB f32), more than the \
+             largest image read, 8192x4096 pixels ({} in all)",
+            MAX_IMAGE_PIXELS
+        );
+    }
+    Ok(())
+}
+
+/// Reads an OpenEXR file's R, G, B channels (any sample type) as linear RGB; images larger
+/// than [`MAX_IMAGE_PIXELS`] are refused from their header, before their pixels are allocated.
+///
+/// # Errors
+/// When the file cannot be read, is not OpenEXR, is too large, or lacks R, G or B.
 pub fn read_exr(path: &Path) -> Result<RgbImage> {
+    let file = File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
+    read_exr_from(std::io::BufReader::new(file))
+        .with_context(|| format!("cannot read OpenEXR file {}", path.display()))
+}
+
+/// [`read_exr`] from a reader positioned at the start of an OpenEXR file.
+///
+/// # Errors
+/// As [`read_exr`].
+pub fn read_exr_from(mut reader: impl std::io::Read + std::io::Seek + Send) -> Result<RgbImage> {
     use exr::prelude::*;
-    let image = read_first_rgba_layer_from_file(
-        path,
-        |resolution, _| RgbImage {
-            width: resolution.width(),
-            height: resolution.height(),
-            pixels: vec![Vec3::ZERO; resolution.width() * resolution.height()],
-        },
-        |img: &mut RgbImage, pos, (r, g, b, _a): (f32, f32, f32, f32)| {
-            img.pixels[pos.y() * img.width + pos.x()] = Vec3::new(r, g, b);
-        },
-    )
-    .with_context(|| format!("cannot read OpenEXR file {}", path.display()))?;
+    let meta = exr::meta::MetaData::read_from_buffered(&mut reader, false)?;
+    for header in &meta.headers {
+        check_image_size(header.layer_size.width(), header.layer_size.height())?;
+    }
+    reader.rewind()?;
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .rgba_channels(
+            |resolution, _| RgbImage {
+                width: resolution.width(),
+                height: resolution.height(),
+                pixels: vec![Vec3::ZERO; resolution.width() * resolution.height()],
+            },
+            |img: &mut RgbImage, pos, (r, g, b, _a): (f32, f32, f32, f32)| {
+                img.pixels[pos.y() * img.width + pos.x()] = Vec3::new(r, g, b);
+            },
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .from_buffered(reader)?;
     Ok(image.layer_data.channel_data.pixels)
+}
+
+/// Reads the text file `path` of at most `max_bytes` bytes (the limit is checked while
+/// reading, so a device or a growing file cannot make it read without end).
+///
+/// # Errors
+/// When the file cannot be read, is longer, or is not UTF-8; the message names the file.
+pub fn read_text(path: &Path, max_bytes: u64) -> Result<String> {
+    use std::io::Read;
+    let file = File::open(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let mut text = String::new();
+    file.take(max_bytes + 1)
+        .read_to_string(&mut text)
+        .with_context(|| format!("cannot read {} as UTF-8 text", path.display()))?;
+    if text.len() as u64 > max_bytes {
+        bail!(
+            "{}: longer than {max_bytes} bytes, the largest file of its kind read",
+            path.display()
+        );
+    }
+    Ok(text)
 }
 
 /// Writes `text` to `path` atomically.

@@ -10,6 +10,7 @@ pub mod captures;
 pub mod cli;
 pub mod commands;
 pub mod controller;
+pub mod csv_input;
 pub mod dispatch;
 pub mod eval;
 pub mod export;

@@ -51,6 +51,9 @@ use sky_core::{SkyError, Vec3};
 
 use crate::args::{ParamError, describe, radians};
 
+/// The largest style file read, bytes (a style with a thousand cloud polylines is smaller).
+pub const MAX_STYLE_BYTES: u64 = 1 << 20;
+
 /// The noon elevation of a `time_of_day` without one, in degrees (the presets' value).
 const DEFAULT_NOON_ELEVATION_DEG: f64 = 60.0;
 
@@ -146,8 +149,8 @@ pub fn load(spec: &str) -> Result<(Scattering, Style), ParamError> {
             names.join(", ")
         )));
     }
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| ParamError(format!("--style {spec}: cannot read the file: {e}")))?;
+    let text = crate::image_io::read_text(path, MAX_STYLE_BYTES)
+        .map_err(|e| ParamError(format!("--style {spec}: {:#}", e)))?;
     parse(spec, &text)
 }
 

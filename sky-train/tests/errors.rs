@@ -129,6 +129,7 @@ fn bad_image_arguments_name_the_argument_and_range() {
 }
 
 #[test]
+/// Bad input is exit status 2, like a bad argument (issue 19).
 fn bad_sample_input_names_the_line() {
     let mut child = Command::new(env!("CARGO_BIN_EXE_sky-train"))
         .args(["sample", "--sun-zenith", "30"])
@@ -146,7 +147,7 @@ fn bad_sample_input_names_the_line() {
     }
     let out = child.wait_with_output().expect("wait");
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains("line 3"), "{stderr}");
     assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
 }

@@ -77,7 +77,8 @@ fn pretrained_constants_regenerate_from_the_weight_files() {
         let weights_path = root.join("sky-core/weights").join(file);
         let weights = export::read_weights::<12>(&weights_path).expect("weight file decodes");
         assert_eq!(&weights, constant, "{file} and the {name} constant differ");
-        let generated = export::pretrained_source(&weights, name, &weights_path);
+        let generated =
+            export::pretrained_source(&weights, name, &weights_path).expect("a constant's name");
         let committed =
             std::fs::read_to_string(root.join("sky-core/src/neural/pretrained").join(source))
                 .expect("generated file exists");

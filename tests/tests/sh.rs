@@ -372,8 +372,8 @@ fn filter_reduces_ringing_below_the_horizon() {
                     (95.0 + 5.0 * i as f32).to_radians(),
                     (10.0 * j as f32).to_radians(),
                 );
-                e_raw += sky_core::color::luminance(raw.radiance(d)).abs();
-                e_filtered += sky_core::color::luminance(filtered.radiance(d)).abs();
+                e_raw += sky_core::color::luminance(raw.series(d)).abs();
+                e_filtered += sky_core::color::luminance(filtered.series(d)).abs();
             }
         }
         eprintln!(

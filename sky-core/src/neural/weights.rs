@@ -16,7 +16,7 @@
 //! | 60 | 12 | output scales, 3 × f32 (> 0) |
 //! | 72 | 8 | trained turbidity range, 2 × f32 (min ≤ max) |
 //! | 80 | 8 | trained sun-zenith range in radians, 2 × f32 (0 ≤ min ≤ max ≤ π) |
-//! | 88 | 32 | source model, ASCII, NUL-padded (e.g. `preetham`) |
+//! | 88 | 32 | source model, printable ASCII (space to `~`), NUL-padded (e.g. `preetham`) |
 //! | 120 | 4 | training seed, u32 |
 //! | 124 | 4 | held-out NRMSE reached in training, f32 |
 //! | 128 | 4 · (6H + H + 3H + 3) | hidden weights H × 6 (row per neuron, inputs in V's order), hidden biases H, output weights 3 × H (row per channel), output biases 3 |
@@ -76,6 +76,14 @@ pub fn crc32(bytes: &[u8]) -> u32 {
     !crc
 }
 
+/// Whether `source` is a model name as the file stores it: printable ASCII (space to `~`), then
+/// NUL padding to the end. A name never holds a control character (it is printed and written
+/// into generated source), nor anything after its first NUL.
+fn is_model_name(source: &[u8; 32]) -> bool {
+    let end = source.iter().position(|&b| b == 0).unwrap_or(source.len());
+    source[..end].iter().all(|b| (b' '..=b'~').contains(b)) && source[end..].iter().all(|&b| b == 0)
+}
+
 /// The size in bytes of a weight file for `hidden` neurons.
 #[must_use]
 pub const fn encoded_len(hidden: usize) -> usize {
@@ -125,7 +133,8 @@ pub enum WeightsError {
         field: &'static str,
     },
     /// A header field holds an invalid value (unknown flag bits, a reversed range, a
-    /// non-positive output scale, a non-ASCII model name).
+    /// non-positive output scale, a model name with a control or non-ASCII character or with
+    /// bytes after its NUL padding).
     InvalidHeader {
         /// Which field.
         field: &'static str,
@@ -202,7 +211,7 @@ pub struct NeuralWeights<const H: usize = 12> {
     pub turbidity_range: (f32, f32),
     /// The sun zenith angles (radians) the network was trained on, inclusive.
     pub sun_zenith_range: (f32, f32),
-    /// The source model's name, ASCII, NUL-padded.
+    /// The source model's name, printable ASCII, NUL-padded.
     pub source: [u8; 32],
     /// The training run's random seed.
     pub seed: u32,
@@ -362,7 +371,7 @@ impl<const H: usize> NeuralWeights<H> {
             });
         }
         let source: [u8; 32] = r.take();
-        if !source.is_ascii() {
+        if !is_model_name(&source) {
             return Err(WeightsError::InvalidHeader {
                 field: "source model",
             });
@@ -401,7 +410,8 @@ impl<const H: usize> NeuralWeights<H> {
     ///
     /// # Errors
     /// [`WeightsError::BufferTooSmall`] when `buf` is too short; [`WeightsError::WrongShape`]
-    /// when H exceeds 255.
+    /// when H exceeds 255; [`WeightsError::InvalidHeader`] for a source name the decoder would
+    /// refuse (see the module docs).
     pub fn encode(&self, buf: &mut [u8]) -> Result<usize, WeightsError> {
         let needed = Self::ENCODED_LEN;
         let Ok(hidden) = u8::try_from(H) else {
@@ -413,6 +423,11 @@ impl<const H: usize> NeuralWeights<H> {
         let Some(buf) = buf.get_mut(..needed) else {
             return Err(WeightsError::BufferTooSmall { needed });
         };
+        if !is_model_name(&self.source) {
+            return Err(WeightsError::InvalidHeader {
+                field: "source model",
+            });
+        }
         let mut w = Writer { bytes: buf, pos: 0 };
         w.put(&MAGIC);
         w.put(&VERSION.to_le_bytes());
@@ -609,6 +624,28 @@ mod tests {
                 field: "source model"
             })
         );
+        // Control characters (an escape sequence for a terminal, a newline for generated
+        // source) and bytes after the padding starts are refused by both sides.
+        for (at, byte) in [(90, 0x1b), (88, b'\n'), (100, b'x'), (88, 0x7f)] {
+            let mut b = good;
+            b[at] = byte;
+            reseal(&mut b);
+            assert_eq!(
+                decode(&b),
+                Err(WeightsError::InvalidHeader {
+                    field: "source model"
+                }),
+                "byte {byte:#x} at {at}"
+            );
+            let mut w = sample();
+            w.source[at - 88] = byte;
+            assert_eq!(
+                w.encode(&mut [0u8; 624]),
+                Err(WeightsError::InvalidHeader {
+                    field: "source model"
+                })
+            );
+        }
         let mut small = [0u8; 100];
         assert_eq!(
             sample().encode(&mut small),

@@ -96,7 +96,12 @@ pub const NORMALISATION: [[f32; MAX_BANDS]; MAX_BANDS] = [
 #[must_use]
 pub fn evaluate(dir: Vec3, bands: usize) -> [f32; MAX_COEFFICIENTS] {
     let dir = dir * math::rsqrt(dir.length_squared());
-    let (x, y, z) = (dir.x, dir.y, dir.z);
+    // A vector too long or too short for f32's squares (or not finite) is not unit length
+    // after that: each coordinate is clamped to [-1, 1] (NaN to -1), so that every basis value
+    // stays finite whatever the input.
+    let [x, y, z] = dir
+        .to_array()
+        .map(|c| math::at_most(math::at_least(c, -1.0), 1.0));
     let bands = bands.min(MAX_BANDS);
     let mut out = [0.0; MAX_COEFFICIENTS];
     // (x + i y)^m = sin^m θ (cos mφ + i sin mφ).

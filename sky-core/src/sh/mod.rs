@@ -55,8 +55,10 @@ pub use preetham_table::PREETHAM;
 /// **Units**: [`radiance`](Self::radiance) is linear sRGB on the model's scale (cd/m² for the
 /// Preetham sky; its luminance is [`color::luminance`](crate::color::luminance));
 /// [`irradiance`](Self::irradiance) on the same scale times steradians (lux for Preetham).
-/// **Below the horizon** the SH sky is whatever the truncated series gives: near zero for
-/// the filtered sky, ringing for the unfiltered one.
+/// **Non-negative, black below the horizon**: [`radiance`](Self::radiance) is the truncated
+/// series clamped at zero (its ringing dips below zero, above the horizon too at 5 bands and
+/// more without the filter), and zero below the horizon, as the Preetham sky it represents;
+/// [`series`](Self::series) is the series itself, for studying the ringing.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ShSky {
     bands: usize,
@@ -172,12 +174,25 @@ impl ShSky {
         &self.coefficients
     }
 
-    /// The SH sky's radiance towards `dir`, `Σ c_lm Y_lm(dir)`: linear sRGB on the model's
-    /// scale. `dir` need not be unit length; a zero or non-finite vector gives a finite,
-    /// meaningless value.
+    /// The SH sky's radiance towards `dir`: [`series`](Self::series) with every channel
+    /// clamped at zero above the horizon (`dir.z ≥ 0`), black below it; linear sRGB on the
+    /// model's scale, finite and non-negative for every `dir` (need not be unit length; a zero
+    /// or non-finite vector gives a finite, meaningless value).
     #[inline]
     #[must_use]
     pub fn radiance(&self, dir: Vec3) -> Vec3 {
+        if dir.z >= 0.0 {
+            self.series(dir).max(Vec3::ZERO)
+        } else {
+            Vec3::ZERO
+        }
+    }
+
+    /// The truncated series itself, `Σ c_lm Y_lm(dir)` (eq. 1), over the whole sphere: what
+    /// the ringing filter acts on, negative where the series rings. Finite for every `dir`.
+    #[inline]
+    #[must_use]
+    pub fn series(&self, dir: Vec3) -> Vec3 {
         Self::expand(&self.coefficients, dir, self.bands)
     }
 
@@ -193,10 +208,13 @@ impl ShSky {
     /// (zero below the horizon), for normals over the whole sphere, relative to the largest
     /// irradiance over the normals: within 1 % from 5 bands on (0.9 % at 5, 0.4 % at 7; 2.9 %
     /// at 3 bands), held by `tests/tests/sh.rs`.
+    ///
+    /// Clamped at zero (a truncated series can dip below zero where a surface faces away
+    /// from the sky); finite for every `normal`.
     #[inline]
     #[must_use]
     pub fn irradiance(&self, normal: Vec3) -> Vec3 {
-        Self::expand(&self.irradiance, normal, self.bands)
+        Self::expand(&self.irradiance, normal, self.bands).max(Vec3::ZERO)
     }
 
     #[inline]

@@ -269,7 +269,10 @@ pub fn strip(
             image.pixels[start..start + tw].fill(Vec3::splat(0.02));
         }
     }
-    let source_width = seq.width.min(4 * tw);
+    // The network is rendered at a whole multiple of the thumbnail's width (up to 4, for the
+    // box filter; at least 1 whatever the captures' width), so that every thumbnail pixel
+    // averages its own f × f pixels of the whole panorama.
+    let factor = (seq.width / tw).clamp(1, 4);
     // Every thumbnail is turned by the same whole number of columns, so that the first
     // capture's sun is in the middle.
     #[allow(
@@ -310,7 +313,7 @@ pub fn strip(
             .copied()
             .unwrap_or(all[0]);
         let step = Step { minutes, ..nearest };
-        let full = render(weights, &step, source_width)?;
+        let full = render(weights, &step, factor * tw)?;
         blit(col, 1, &downsample_upper(&full, tw));
     }
     let mid = exposure_samples.len() / 2;
@@ -326,10 +329,12 @@ pub fn strip(
     Ok(image)
 }
 
-/// The upper hemisphere of a whole-sphere image box-filtered to `tw` × `tw/4`.
+/// The upper hemisphere of a whole-sphere image whose width is a multiple of `tw`,
+/// box-filtered to `tw` × `tw/4`.
 fn downsample_upper(full: &RgbImage, tw: usize) -> Vec<Vec3> {
     let th = tw / 4;
-    let f = (full.width / tw).max(1);
+    let f = full.width / tw;
+    debug_assert!(f >= 1 && full.width == f * tw && full.height >= f * th);
     let mut out = vec![Vec3::ZERO; tw * th];
     for y in 0..th {
         for x in 0..tw {

@@ -1,6 +1,8 @@
 //! Reading a capture sequence (seed 000 §III-D): every frame is checked, read, reduced to its
 //! training samples and a small evaluation grid, and dropped before the next one is read, so
 //! memory holds one full-resolution frame at a time (a 4096 × 2048 frame is 96 MiB as RGB f32).
+//! Frames are at most [`MAX_IMAGE_PIXELS`](crate::image_io::MAX_IMAGE_PIXELS) (8192 × 4096), a
+//! limit checked from every header before any frame is read.
 
 use std::path::{Path, PathBuf};
 
@@ -99,14 +101,25 @@ pub fn list(dir: &Path) -> Result<(Option<Manifest>, FrameList)> {
     Ok((manifest, frames))
 }
 
-/// Checks an OpenEXR file's header: readable, R, G and B channels, a 2:1 latitude-longitude
-/// image. Returns its size.
+/// Checks an OpenEXR file's header: readable, at most
+/// [`MAX_IMAGE_PIXELS`](crate::image_io::MAX_IMAGE_PIXELS), R, G and B channels, a 2:1
+/// latitude-longitude image. Returns its size.
 ///
 /// # Errors
 /// A message naming the file and what is wrong.
 pub fn check_header(path: &Path) -> Result<(usize, usize)> {
-    let p = path.display();
-    let meta = exr::meta::MetaData::read_from_file(path, false).map_err(|e| match e {
+    check_meta(
+        &path.display().to_string(),
+        exr::meta::MetaData::read_from_file(path, false),
+    )
+}
+
+/// [`check_header`] of the header read from the file named `p`.
+fn check_meta(
+    p: &str,
+    meta: std::result::Result<exr::meta::MetaData, exr::error::Error>,
+) -> Result<(usize, usize)> {
+    let meta = meta.map_err(|e| match e {
         exr::error::Error::Io(io) if io.kind() != std::io::ErrorKind::UnexpectedEof => {
             anyhow::anyhow!("{p}: cannot read: {io}")
         }
@@ -137,6 +150,10 @@ pub fn check_header(path: &Path) -> Result<(usize, usize)> {
                 names.join(", ")
             }
         );
+    }
+    for header in &meta.headers {
+        crate::image_io::check_image_size(header.layer_size.width(), header.layer_size.height())
+            .with_context(|| p.to_string())?;
     }
     let (w, h) = (header.layer_size.width(), header.layer_size.height());
     if w != 2 * h || h < 8 {
@@ -200,7 +217,15 @@ pub fn load(dir: &Path, config: &LoadConfig) -> Result<Sequence> {
     };
     let mut frames = Vec::with_capacity(list.len());
     for (k, (path, time, exposure)) in list.iter().enumerate() {
-        let frame = read_frame(
+        let image = crate::image_io::read_exr(path).map_err(|e| {
+            anyhow::anyhow!(
+                "{}: truncated or corrupt OpenEXR data: {}",
+                path.display(),
+                e.root_cause()
+            )
+        })?;
+        let frame = reduce_frame(
+            &image,
             path,
             *time,
             *exposure,
@@ -227,9 +252,37 @@ fn to_u32(k: usize) -> u32 {
     u32::try_from(k).unwrap_or(u32::MAX)
 }
 
-/// Reads one frame and reduces it to samples and its evaluation grid.
+/// One frame from the bytes of an OpenEXR file, checked, read and reduced as [`load`] does
+/// with each file of a folder without a manifest (exposure 1, no site, the skyline estimate,
+/// 64 samples): what the fuzz target `capture_frame` runs on every input.
+///
+/// # Errors
+/// As [`load`] for a bad frame.
+pub fn frame_from_bytes(bytes: &[u8]) -> Result<Frame> {
+    let name = Path::new("frame.exr");
+    let (width, height) = check_meta(
+        "frame.exr",
+        exr::meta::MetaData::read_from_buffered(bytes, false),
+    )?;
+    let image = crate::image_io::read_exr_from(std::io::Cursor::new(bytes))
+        .map_err(|e| anyhow::anyhow!("frame.exr: truncated or corrupt OpenEXR data: {e}"))?;
+    if (image.width, image.height) != (width, height) {
+        bail!("frame.exr: the first RGB layer is not the header's size");
+    }
+    let grid = Equirect::new(to_u32(width), to_u32(height), Extent::Sphere)
+        .map_err(|e| anyhow::anyhow!("{e}"))?;
+    let config = LoadConfig {
+        samples_per_frame: 64,
+        progress: false,
+        ..LoadConfig::default()
+    };
+    reduce_frame(&image, name, None, 1.0, None, None, &grid, &config, 0)
+}
+
+/// A frame's image reduced to its samples and evaluation grid (see the module docs).
 #[allow(clippy::too_many_arguments)]
-fn read_frame(
+fn reduce_frame(
+    image: &crate::image_io::RgbImage,
     path: &Path,
     time: Option<UnixTime>,
     exposure: f64,
@@ -240,9 +293,6 @@ fn read_frame(
     index: usize,
 ) -> Result<Frame> {
     let p = path.display();
-    let image = crate::image_io::read_exr(path).map_err(|e| {
-        anyhow::anyhow!("{p}: truncated or corrupt OpenEXR data: {}", e.root_cause())
-    })?;
     let (w, h) = (image.width, image.height);
     let luminance: Vec<f32> = image
         .pixels
@@ -300,6 +350,20 @@ fn read_frame(
     }
     #[allow(clippy::cast_possible_truncation)]
     let scale = (1.0 / exposure) as f32;
+    // Radiance is f32 from here on (samples, the network, the weight file).
+    if let Some(i) = image
+        .pixels
+        .iter()
+        .position(|c| !(*c * scale).is_finite() || (c.max_element() > 0.0 && scale == 0.0))
+    {
+        bail!(
+            "{p}: exposure {exposure:e} makes pixel ({}, {}) {:?} a radiance outside f32's range \
+             (pixel values are divided by the manifest's exposure)",
+            i % w,
+            i / w,
+            image.pixels[i].to_array()
+        );
+    }
     // Eq. 10: rotate every view so that the sun's azimuth is π.
     let rotate = found.azimuth - std::f64::consts::PI;
     let (sr, cr) = rotate.sin_cos();
@@ -333,7 +397,7 @@ fn read_frame(
     }
     // The evaluation grid: every `stride`-th pixel of the upper hemisphere.
     let stride = w.div_ceil(config.eval_width).max(1);
-    let eval = EvalGrid::sample(&image, &valid, stride, scale);
+    let eval = EvalGrid::sample(image, &valid, stride, scale);
     Ok(Frame {
         file: path.to_path_buf(),
         time,

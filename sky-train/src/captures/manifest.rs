@@ -23,6 +23,10 @@ use serde::Deserialize;
 /// The manifest's file name.
 pub const MANIFEST: &str = "captures.toml";
 
+/// The largest manifest read, bytes: about 10,000 frames (a frame's entry is about 100
+/// bytes); a manifest is read whole before it is parsed.
+pub const MAX_MANIFEST_BYTES: u64 = 1 << 20;
+
 /// A parsed manifest.
 #[derive(Debug, Clone, Default, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -63,12 +67,20 @@ impl Manifest {
         if !path.exists() {
             return Ok(None);
         }
-        let text = std::fs::read_to_string(&path)
-            .with_context(|| format!("cannot read {}", path.display()))?;
-        let manifest: Self = toml::from_str(&text)
+        let text = crate::image_io::read_text(&path, MAX_MANIFEST_BYTES)?;
+        Self::parse(&text, &path).map(Some)
+    }
+
+    /// The manifest in `text`, read from `path` (named in errors), checked as [`Manifest::read`]
+    /// checks it.
+    ///
+    /// # Errors
+    /// As [`Manifest::read`].
+    pub fn parse(text: &str, path: &Path) -> Result<Self> {
+        let manifest: Self = toml::from_str(text)
             .map_err(|e| anyhow::anyhow!("{}: not a valid manifest: {e}", path.display()))?;
-        manifest.check(&path)?;
-        Ok(Some(manifest))
+        manifest.check(path)?;
+        Ok(manifest)
     }
 
     fn check(&self, path: &Path) -> Result<()> {

@@ -46,11 +46,21 @@ impl SkyMask {
     pub fn read(path: &Path) -> Result<Self> {
         let file = std::fs::File::open(path)
             .with_context(|| format!("mask {}: cannot open", path.display()))?;
-        let mut decoder = png::Decoder::new(std::io::BufReader::new(file));
+        // The png crate's own limit (64 MiB of decoded bytes by default) would refuse the mask
+        // of a frame of the largest size; the size is checked from the header instead.
+        let mut decoder = png::Decoder::new_with_limits(
+            std::io::BufReader::new(file),
+            png::Limits {
+                bytes: crate::image_io::MAX_IMAGE_PIXELS * 8,
+            },
+        );
         decoder.set_transformations(png::Transformations::EXPAND | png::Transformations::STRIP_16);
         let mut reader = decoder
             .read_info()
             .with_context(|| format!("mask {}: not a PNG image", path.display()))?;
+        let (w, h) = (reader.info().width as usize, reader.info().height as usize);
+        crate::image_io::check_image_size(w, h)
+            .with_context(|| format!("mask {}", path.display()))?;
         let mut buf = vec![0; reader.output_buffer_size().unwrap_or(0)];
         let info = reader
             .next_frame(&mut buf)

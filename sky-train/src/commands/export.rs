@@ -75,7 +75,7 @@ pub fn run(args: &ExportArgs, output: &mut dyn Write) -> Result<()> {
             };
             let weights = export::read_weights::<12>(path)?;
             if matches!(args.format, ExportFormat::F32) {
-                export::pretrained_source(&weights, name, path)
+                export::pretrained_source(&weights, name, path)?
             } else {
                 export::pretrained_fixed_source(&weights, name, path)?
             }
@@ -100,16 +100,17 @@ fn shader_source(args: &ExportArgs, lang: sky_gpu::Language) -> Result<String> {
         }
         ModelKind::Aoas => sky_gpu::Model::Aoas,
         ModelKind::Sh => sky_gpu::Model::Sh,
-        ModelKind::Hosek => {
-            return Err(ParamError(
-                "--model hosek has no shader (preetham, neural, neural-preetham, neural-hosek, aoas or sh)".into(),
-            )
+        ModelKind::Hosek | ModelKind::Cie | ModelKind::Perez => {
+            return Err(ParamError(format!(
+                "--model {} has no shader (preetham, neural, neural-preetham, neural-hosek, aoas or sh)",
+                sky.model
+            ))
             .into());
         }
     };
     let shader = model.shader();
     if !args.constants {
-        if sky.params() != SkyParams::default() || sky.weights.is_some() {
+        if sky.params()? != SkyParams::default() || sky.weights.is_some() {
             return Err(ParamError(
                 "--sun-zenith, --sun-azimuth, --turbidity, --weights, --style, --bands and --no-ringing-filter name one sky: add --constants to write its parameters into the shader".into(),
             )

@@ -2,13 +2,13 @@
 
 use std::io::{BufRead, BufWriter, Write};
 
-use anyhow::{Result, bail};
+use anyhow::Result;
 use sky_core::Vec3;
 use sky_core::color::Xyy;
 use sky_core::geom;
 
 use super::SkyArgs;
-use crate::args::{radians, stdin_pairs};
+use crate::args::{ParamError, radians};
 
 /// Evaluates the sky of `args` at the `view_zenith_deg,view_azimuth_deg` lines of `input` and
 /// writes `view_zenith_deg,view_azimuth_deg,Y,x,y,R,G,B` to `output`.
@@ -20,20 +20,19 @@ pub fn run(args: &SkyArgs, input: &mut dyn BufRead, output: &mut dyn Write) -> R
     let source = args.source()?;
     let mut rows: Vec<(String, String)> = Vec::new();
     let mut dirs: Vec<Vec3> = Vec::new();
-    for (n, z, a) in stdin_pairs(input, "view_zenith_deg,view_azimuth_deg")? {
-        match (z.parse::<f64>(), a.parse::<f64>()) {
-            (Ok(zv), Ok(av)) if zv.is_finite() && av.is_finite() => {
-                if !(0.0..=180.0).contains(&zv) {
-                    bail!("stdin line {n}: view_zenith_deg = {zv} is outside [0, 180]");
-                }
-                dirs.push(geom::direction(radians(zv), radians(av)));
-                rows.push((z, a));
-            }
-            _ if rows.is_empty() && n == 1 => {} // a header line
-            _ => bail!(
-                "stdin line {n}: view_zenith_deg and view_azimuth_deg must be finite numbers, got `{z},{a}`"
-            ),
+    for row in crate::csv_input::rows(input, ["view_zenith_deg", "view_azimuth_deg"]) {
+        let row = row?;
+        let [zv, av] = row.values;
+        if !(0.0..=180.0).contains(&zv) {
+            return Err(ParamError(format!(
+                "stdin line {}: view_zenith_deg = {zv} is outside [0, 180]",
+                row.line
+            ))
+            .into());
         }
+        dirs.push(geom::direction(radians(zv), radians(av)));
+        let [z, a] = row.text;
+        rows.push((z, a));
     }
     let mut xyy = vec![Xyy::default(); dirs.len()];
     let mut rgb = vec![Vec3::ZERO; dirs.len()];

@@ -168,7 +168,7 @@ impl SkySource for Lighting {
 
     fn rgb_batch(&self, dirs: &[Vec3], out: &mut [Vec3]) {
         for (o, d) in out.iter_mut().zip(dirs) {
-            *o = self.0.radiance(*d);
+            *o = self.0.series(*d);
         }
     }
 }

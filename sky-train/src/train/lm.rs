@@ -1,6 +1,8 @@
 //! Full-batch Levenberg-Marquardt (Marquardt's diagonal scaling) for least-squares problems with
 //! a few hundred parameters: the normal equations are small enough to solve exactly.
 
+use std::time::Instant;
+
 use rayon::prelude::*;
 
 /// A least-squares problem: residuals r(p) and their Jacobian, summed over examples.
@@ -110,37 +112,62 @@ impl Accumulator {
     }
 }
 
-/// Σ r² at `params`, and the normal equations when `normal`, over all examples, in parallel.
+/// Σ r² at `params`, and the normal equations when `normal`, over all examples, in parallel;
+/// `None` when `deadline` passes first (checked every [`BLOCK`] examples).
 ///
 /// The examples are split into a fixed number of chunks whose sums are added in chunk order,
 /// so the result does not depend on the thread count or on scheduling: training is
-/// reproducible bit for bit.
-pub fn evaluate(problem: &impl LeastSquares, params: &[f64], normal: bool) -> Accumulator {
+/// reproducible bit for bit. The chunks are summed as many at a time as there are threads, so
+/// that at most threads + 1 P × P matrices exist at once (memory: see [`MAX_PARAMETERS`]).
+pub fn evaluate(
+    problem: &impl LeastSquares,
+    params: &[f64],
+    normal: bool,
+    deadline: Option<Instant>,
+) -> Option<Accumulator> {
     const CHUNKS: usize = 64;
     let p = params.len();
     let n = problem.examples();
     let chunk = n.div_ceil(CHUNKS).max(1);
-    let parts: Vec<Accumulator> = (0..n.div_ceil(chunk))
-        .into_par_iter()
-        .map(|c| {
-            let mut acc = Accumulator::new(p, normal);
-            crate::dispatch::fastest(
-                #[inline(always)]
-                || {
-                    for i in c * chunk..((c + 1) * chunk).min(n) {
-                        problem.accumulate(params, i, &mut acc, normal);
-                    }
-                },
-            );
-            acc.flush();
-            acc.block = Vec::new();
-            acc
-        })
-        .collect();
-    parts
-        .into_iter()
-        .fold(Accumulator::new(p, normal), Accumulator::merge)
+    let chunks = n.div_ceil(chunk);
+    let group = rayon::current_num_threads().max(1);
+    let late = || deadline.is_some_and(|d| Instant::now() >= d);
+    let mut total = Accumulator::new(p, normal);
+    for first in (0..chunks).step_by(group) {
+        let parts: Vec<Option<Accumulator>> = (first..(first + group).min(chunks))
+            .into_par_iter()
+            .map(|c| {
+                let mut acc = Accumulator::new(p, normal);
+                let mut in_time = true;
+                crate::dispatch::fastest(
+                    #[inline(always)]
+                    || {
+                        for i in c * chunk..((c + 1) * chunk).min(n) {
+                            if i % BLOCK == 0 && late() {
+                                in_time = false;
+                                return;
+                            }
+                            problem.accumulate(params, i, &mut acc, normal);
+                        }
+                    },
+                );
+                acc.flush();
+                acc.block = Vec::new();
+                in_time.then_some(acc)
+            })
+            .collect();
+        for part in parts {
+            total = total.merge(part?);
+        }
+    }
+    Some(total)
 }
+
+/// The most parameters Levenberg-Marquardt trains: its normal equations are a P × P matrix of
+/// f64, of which [`evaluate`] holds one per thread plus one and [`damped_step`] one more, 72 MB
+/// each at this size (a 6-255-3 network has 2,553 parameters; 6-255-255-3 has 67,833, whose
+/// matrix alone would take 37 GB).
+pub const MAX_PARAMETERS: usize = 3000;
 
 /// Solves (A + λ diag(A)) x = −g for symmetric positive (semi)definite A given as its upper
 /// triangle, by Cholesky. Returns `None` when the damped matrix is not positive definite.
@@ -205,28 +232,41 @@ pub struct Lm {
     pub cost: f64,
     /// Damping.
     pub lambda: f64,
+    /// No step is taken after this instant: a step still running then is abandoned, and the
+    /// parameters stay as they were.
+    pub deadline: Option<Instant>,
 }
 
 impl Lm {
-    /// Starts at `params`.
-    pub fn new(problem: &impl LeastSquares, params: Vec<f64>) -> Self {
-        let cost = evaluate(problem, &params, false).cost;
+    /// Starts at `params` (cost infinite if `deadline` passes while it is computed).
+    pub fn new(problem: &impl LeastSquares, params: Vec<f64>, deadline: Option<Instant>) -> Self {
+        let cost = evaluate(problem, &params, false, deadline).map_or(f64::INFINITY, |a| a.cost);
         Self {
             params,
             cost,
             lambda: 1e-2,
+            deadline,
         }
     }
 
     /// One iteration: builds the normal equations and tries ever more damped steps until one
-    /// lowers the cost. Returns false when none does up to λ = 10¹² (converged or stuck).
+    /// lowers the cost. Returns false when none does up to λ = 10¹² (converged or stuck), or
+    /// when the deadline passes.
     pub fn step(&mut self, problem: &impl LeastSquares) -> bool {
-        let acc = evaluate(problem, &self.params, true);
+        if !self.cost.is_finite() {
+            return false;
+        }
+        let Some(acc) = evaluate(problem, &self.params, true, self.deadline) else {
+            return false;
+        };
         // From λ = 10⁻¹² to 10¹² in steps of 4 takes 40 tries.
         for _ in 0..48 {
             if let Some(delta) = damped_step(&acc.jtj, &acc.jtr, self.lambda) {
                 let trial: Vec<f64> = self.params.iter().zip(&delta).map(|(p, d)| p + d).collect();
-                let cost = evaluate(problem, &trial, false).cost;
+                let Some(cost) = evaluate(problem, &trial, false, self.deadline).map(|a| a.cost)
+                else {
+                    return false;
+                };
                 if cost.is_finite() && cost < self.cost {
                     self.params = trial;
                     self.cost = cost;
@@ -272,7 +312,7 @@ mod tests {
         let xs: Vec<f64> = (0..50).map(|i| f64::from(i) / 25.0).collect();
         let ys = xs.iter().map(|x| 2.5 * (-1.3 * x).exp()).collect();
         let problem = Exp { xs, ys };
-        let mut lm = Lm::new(&problem, vec![1.0, 0.0]);
+        let mut lm = Lm::new(&problem, vec![1.0, 0.0], None);
         for _ in 0..100 {
             if !lm.step(&problem) {
                 break;

@@ -92,6 +92,31 @@ impl TrainConfig {
     }
 }
 
+impl TrainConfig {
+    /// Checks what the configuration asks for is within the trainer's limits: LM trains at
+    /// most [`lm::MAX_PARAMETERS`] parameters.
+    ///
+    /// # Errors
+    /// A [`crate::args::ParamError`] naming `--hidden`, the network's parameter count and
+    /// the limit.
+    pub fn check(&self) -> Result<()> {
+        let mut sizes = vec![6];
+        sizes.extend(&self.hidden);
+        sizes.push(3);
+        let p = Net::param_count(&sizes);
+        if self.optimizer == Optimizer::Lm && p > lm::MAX_PARAMETERS {
+            let hidden: Vec<String> = self.hidden.iter().map(ToString::to_string).collect();
+            return Err(crate::args::ParamError(format!(
+                "--hidden {}: a network of {p} parameters; Levenberg-Marquardt trains at most {} (its normal equations are a P x P matrix per thread); use fewer neurons or --optimizer backprop",
+                hidden.join(","),
+                lm::MAX_PARAMETERS
+            ))
+            .into());
+        }
+        Ok(())
+    }
+}
+
 /// A figure to time training against: a mean NRMSE over some images.
 #[derive(Debug, Clone)]
 pub struct Milestone {
@@ -117,6 +142,11 @@ impl Milestone {
         }))
     }
 }
+
+/// A training whose best validation NRMSE is above this (or not a number) has diverged: its
+/// error exceeds the whole range of the sky's radiance, worse than any constant sky, and
+/// [`train`] returns an error instead of the network.
+pub const DIVERGED_NRMSE: f64 = 1.0;
 
 /// What early stopping watches: the mean NRMSE of a network on skies it is not trained on.
 pub trait Validation {
@@ -434,13 +464,17 @@ fn progress_bar(config: &TrainConfig) -> ProgressBar {
 /// captured frames, [`crate::captures`]), stopping early on `validation`.
 ///
 /// # Errors
-/// When the checkpoint cannot be read or written.
+/// When the checkpoint cannot be read or written, or when training diverged (its best
+/// validation NRMSE is above [`DIVERGED_NRMSE`] or not a number).
 pub fn train<V: Validation + ?Sized>(
     config: &TrainConfig,
     set: &DataSet,
     validation: &V,
 ) -> Result<Trained> {
     let start = Instant::now();
+    config.check()?;
+    // Every step, the initial race included, stops when the wall-time budget is spent.
+    let deadline = start + std::time::Duration::from_secs_f64(config.max_seconds.clamp(0.0, 1e9));
     let scaling = config
         .init
         .as_ref()
@@ -465,7 +499,11 @@ pub fn train<V: Validation + ?Sized>(
                 "the initial network is {:?}, this run trains {sizes:?}",
                 net.sizes
             ),
-            None => (initial_net(config, &sizes, set, &scaling), 0, None),
+            None => (
+                initial_net(config, &sizes, set, &scaling, deadline),
+                0,
+                None,
+            ),
         },
     };
     let mut best = Trained {
@@ -489,7 +527,7 @@ pub fn train<V: Validation + ?Sized>(
             Optimizer::Lm => {
                 let problem = Problem::new(&net, set, &scaling, config.irradiance_weight);
                 let state = lm_state.get_or_insert_with(|| {
-                    let mut lm = Lm::new(&problem, net.params.clone());
+                    let mut lm = Lm::new(&problem, net.params.clone(), Some(deadline));
                     lm.lambda = resumed_lambda.unwrap_or(lm.lambda);
                     lm
                 });
@@ -531,6 +569,9 @@ pub fn train<V: Validation + ?Sized>(
             "validation NRMSE {v:.5} (best {:.5})",
             best.validation_nrmse
         ));
+        if !net.params.iter().all(|p| p.is_finite()) {
+            break; // diverged (backprop); the best network so far is kept
+        }
         if let Some(path) = &config.checkpoint {
             let lambda = lm_state.as_ref().map(|lm| lm.lambda);
             checkpoint::write(path, &net, iteration + 1, lambda)?;
@@ -545,6 +586,14 @@ pub fn train<V: Validation + ?Sized>(
         }
     }
     bar.finish_and_clear();
+    if best.validation_nrmse.is_nan() || best.validation_nrmse > DIVERGED_NRMSE {
+        bail!(
+            "training diverged: the best validation NRMSE is {} after {} iterations (a usable \
+             network is below {DIVERGED_NRMSE}); check the training data's values",
+            best.validation_nrmse,
+            best.iterations
+        );
+    }
     best.seconds = start.elapsed().as_secs_f64();
     best.milestone = milestone;
     Ok(best)
@@ -552,7 +601,15 @@ pub fn train<V: Validation + ?Sized>(
 
 /// The starting network: the best of `config.restarts` random starts after a few LM steps each
 /// (random starts of a 123-parameter network differ a lot; a short race is cheap).
-fn initial_net(config: &TrainConfig, sizes: &[usize], set: &DataSet, scaling: &Scaling) -> Net {
+///
+/// The race shares the run's clock: it stops at `deadline`, with the best start so far.
+fn initial_net(
+    config: &TrainConfig,
+    sizes: &[usize],
+    set: &DataSet,
+    scaling: &Scaling,
+    deadline: Instant,
+) -> Net {
     let mut rng = rand::rngs::StdRng::seed_from_u64(config.seed);
     let candidates: Vec<Net> = (0..config.restarts.max(1))
         .map(|_| Net::random(sizes, &mut rng, 1.0))
@@ -573,7 +630,7 @@ fn initial_net(config: &TrainConfig, sizes: &[usize], set: &DataSet, scaling: &S
     let mut best: Option<(f64, Net)> = None;
     for mut net in candidates {
         let problem = Problem::new(&net, &subsample, scaling, config.irradiance_weight);
-        let mut state = Lm::new(&problem, net.params.clone());
+        let mut state = Lm::new(&problem, net.params.clone(), Some(deadline));
         for _ in 0..5 {
             if !state.step(&problem) {
                 break;
@@ -667,8 +724,19 @@ pub mod checkpoint {
             None
         };
         let params: Vec<f64> = lines.map(str::parse).collect::<Result<_, _>>()?;
-        if params.len() != Net::param_count(sizes) || params.iter().any(|p| !p.is_finite()) {
-            bail!("the checkpoint's parameters are incomplete or not finite");
+        if params.len() != Net::param_count(sizes) {
+            bail!(
+                "the checkpoint holds {} parameters, a {sizes:?} network has {}",
+                params.len(),
+                Net::param_count(sizes)
+            );
+        }
+        // A weight file holds f32: a parameter beyond f32's range could never be written.
+        if let Some(p) = params
+            .iter()
+            .find(|p| p.is_nan() || p.abs() > f64::from(f32::MAX))
+        {
+            bail!("the checkpoint's parameter {p:e} is not a finite f32");
         }
         Ok(Resume {
             net: Net {
