@@ -575,3 +575,77 @@ pub fn cct_report(results: &[CctMeasurement]) -> String {
     }
     s
 }
+
+/// The physical atmosphere's costs: its precomputation (wall time on all cores, against the
+/// 60 s budget, with the machine's load average beside it), the sky of one sun position, and
+/// the radiance per direction (against the straightforward Preetham peer of the same run,
+/// `results[0]`, when given).
+///
+/// # Errors
+/// When the default atmosphere cannot be built.
+pub fn physical(dirs: &[Vec3], runs: usize, results: &[Measurement]) -> Result<String> {
+    use crate::physical::{Atmosphere, PhysicalAtmosphere, Resolution};
+    let load = || {
+        std::fs::read_to_string("/proc/loadavg")
+            .ok()
+            .and_then(|s| s.split_whitespace().next().map(str::to_owned))
+            .unwrap_or_else(|| "?".into())
+    };
+    let (load_before, start) = (load(), Instant::now());
+    let atm = std::sync::Arc::new(PhysicalAtmosphere::build(
+        &Atmosphere::default(),
+        &Resolution::default(),
+        &indicatif::ProgressBar::hidden(),
+    )?);
+    let seconds = start.elapsed().as_secs_f64();
+    let mut s = format!(
+        "physical precompute (default atmosphere, {} threads, {} orders) {seconds:>8.1} s wall  {:>7.2}x vs the 60 s budget (load average {load_before} before, {} after, on {} cores)\n",
+        rayon::current_num_threads(),
+        atm.ground.orders.len(),
+        60.0 / seconds,
+        load(),
+        std::thread::available_parallelism().map_or(0, std::num::NonZero::get),
+    );
+    let t = median_time(runs, || {
+        black_box(atm.sky(black_box(51.6), 17.2).ok());
+    });
+    s += &format!(
+        "{:<48} {:>10.2} us/sky\n",
+        "physical sky (one sun position)",
+        t.as_secs_f64() * 1e6
+    );
+    let sky = atm.sky(51.6, 17.2)?;
+    let v = |d: &Vec3| [f64::from(d.x), f64::from(d.y), f64::from(d.z)];
+    let mut sum = 0.0;
+    let fast = median_time(runs, || {
+        for d in black_box(dirs) {
+            sum += sky.radiance_xyzm(v(d))[1];
+        }
+        black_box(sum);
+    });
+    let sparse: Vec<Vec3> = dirs.iter().step_by(16).copied().collect();
+    let spectral = median_time(runs, || {
+        for d in black_box(&sparse) {
+            sum += sky.spectral_radiance(v(d))[20];
+        }
+        black_box(sum);
+    });
+    let own = [
+        (
+            "physical radiance_xyzm, one direction a call",
+            per_direction(fast, dirs.len()),
+        ),
+        (
+            "physical spectral_radiance (47 bins), one a call",
+            per_direction(spectral, sparse.len()),
+        ),
+    ];
+    for (name, ns) in own {
+        let peer = results.first();
+        let ratio = peer.map_or(String::new(), |p| {
+            format!("  {:>7.2}x vs {}", p.ns_per_direction / ns, p.name)
+        });
+        s += &format!("{name:<48} {ns:>10.2} ns/direction{ratio}\n");
+    }
+    Ok(s)
+}

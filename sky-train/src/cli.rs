@@ -8,9 +8,10 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use crate::commands::{
-    self, SkyArgs, bench::BenchArgs, eval::EvalArgs, export::ExportArgs, fit_sh::FitShArgs,
-    fuzz_weights::FuzzArgs, gallery::GalleryArgs, locus_table::LocusTableArgs, render::RenderArgs,
-    schedule::ScheduleArgs, showcase::ShowcaseArgs, size_study::SizeStudyArgs, train::TrainArgs,
+    self, SkyArgs, bench::BenchArgs, daylight::DaylightArgs, eval::EvalArgs, export::ExportArgs,
+    fit_sh::FitShArgs, fuzz_weights::FuzzArgs, gallery::GalleryArgs, locus_table::LocusTableArgs,
+    render::RenderArgs, schedule::ScheduleArgs, showcase::ShowcaseArgs, size_study::SizeStudyArgs,
+    spectrum::SpectrumArgs, train::TrainArgs,
 };
 
 /// The `sky-train` command line.
@@ -90,6 +91,16 @@ pub enum Command {
     /// `x,y,cct_k,duv`: correlated colour temperature (1000-100000 K) and Duv (positive above
     /// the Planckian locus, ANSI C78.377).
     Cct,
+    /// The physical atmosphere's spectral irradiance at the ground for one sun position: CSV
+    /// `wavelength_nm,global_horizontal,diffuse_horizontal,direct_horizontal,direct_normal` in
+    /// W m⁻² nm⁻¹ (10 nm bins 360-830 nm, named by their centres). Precomputes the atmosphere
+    /// on first use (cached).
+    Spectrum(SpectrumArgs),
+    /// Horizontal illuminance against geometric sun elevation: CSV
+    /// `sun_elevation_deg,global_lux,diffuse_lux,direct_lux,x,y,cct_k,duv,melanopic_edi_lux`
+    /// (x, y of the global light; cct_k and duv empty where |Duv| > 0.05). --model physical:
+    /// the spectral atmosphere, sun and sky; --model preetham: today's sky-only figures.
+    Daylight(DaylightArgs),
 }
 
 /// Runs `command`, reading `sample`'s and `cct`'s input from `input` and writing its output to
@@ -115,5 +126,7 @@ pub fn execute(command: Command, input: &mut dyn BufRead, output: &mut dyn Write
         Command::Schedule(args) => commands::schedule::run(&args, output),
         Command::Captures { command } => commands::captures::run(&command, output),
         Command::Cct => commands::cct::run(input, output),
+        Command::Spectrum(args) => commands::spectrum::run(&args, output),
+        Command::Daylight(args) => commands::daylight::run(&args, output),
     }
 }

@@ -16,6 +16,7 @@ pub mod eval;
 pub mod export;
 pub mod fuzz;
 pub mod image_io;
+pub mod physical;
 pub mod planckian;
 pub mod plot;
 pub mod reference;

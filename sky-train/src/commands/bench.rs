@@ -20,6 +20,10 @@ pub struct BenchArgs {
     /// Timed runs per evaluator (the median is reported).
     #[arg(long, default_value_t = 15, value_parser = clap::value_parser!(u32).range(1..=1000))]
     runs: u32,
+    /// Also time the physical atmosphere: its precomputation (not cached; tens of seconds),
+    /// the sky of one sun position and the radiance per direction.
+    #[arg(long)]
+    physical: bool,
 }
 
 /// Runs the benchmarks and writes their tables to `output`.
@@ -38,5 +42,12 @@ pub fn run(args: &BenchArgs, output: &mut dyn Write) -> Result<()> {
     write!(output, "{}", bench::sh_report(&sh))?;
     let cct = bench::cct(args.runs as usize)?;
     write!(output, "{}", bench::cct_report(&cct))?;
+    if args.physical {
+        write!(
+            output,
+            "{}",
+            bench::physical(&dirs, args.runs as usize, &results)?
+        )?;
+    }
     Ok(())
 }

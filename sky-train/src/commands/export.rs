@@ -100,7 +100,7 @@ fn shader_source(args: &ExportArgs, lang: sky_gpu::Language) -> Result<String> {
         }
         ModelKind::Aoas => sky_gpu::Model::Aoas,
         ModelKind::Sh => sky_gpu::Model::Sh,
-        ModelKind::Hosek | ModelKind::Cie | ModelKind::Perez => {
+        ModelKind::Hosek | ModelKind::Cie | ModelKind::Perez | ModelKind::Physical => {
             return Err(ParamError(format!(
                 "--model {} has no shader (preetham, neural, neural-preetham, neural-hosek, aoas or sh)",
                 sky.model

@@ -6,6 +6,8 @@
 pub mod bench;
 pub mod captures;
 pub mod cct;
+pub mod daylight;
+pub mod daylight_plot;
 pub mod eval;
 pub mod export;
 pub mod fit_sh;
@@ -17,6 +19,7 @@ pub mod sample;
 pub mod schedule;
 pub mod showcase;
 pub mod size_study;
+pub mod spectrum;
 pub mod train;
 
 use std::path::PathBuf;
@@ -90,6 +93,58 @@ pub struct SkyArgs {
     /// Measured global horizontal illuminance, lux (perez only, instead of --ghi).
     #[arg(long, value_name = "LUX", allow_negative_numbers = true, value_parser = finite)]
     global_lux: Option<f64>,
+    #[command(flatten)]
+    atmosphere: AtmosphereArgs,
+}
+
+/// The atmosphere of `--model physical` (each flag defaults to the clear mid-latitude
+/// atmosphere of docs/daylight.md).
+#[derive(Args, Clone, Default)]
+pub struct AtmosphereArgs {
+    /// Aerosol optical depth at 550 nm, 0 to 5 (physical only; default 0.151; excludes
+    /// --turbidity, which maps Preetham's turbidity to it).
+    #[arg(
+        long,
+        value_name = "TAU",
+        allow_negative_numbers = true,
+        conflicts_with = "turbidity"
+    )]
+    aod: Option<f64>,
+    /// Angstrom exponent of the aerosol, 0 to 3 (physical only; default 1.3).
+    #[arg(long, value_name = "ALPHA", allow_negative_numbers = true)]
+    angstrom: Option<f64>,
+    /// Aerosol single-scattering albedo, 0 to 1 (physical only; default 0.925).
+    #[arg(long, value_name = "W", allow_negative_numbers = true)]
+    aerosol_ssa: Option<f64>,
+    /// Aerosol Henyey-Greenstein asymmetry, -0.95 to 0.95 (physical only; default 0.703).
+    #[arg(long, value_name = "G", allow_negative_numbers = true)]
+    aerosol_g: Option<f64>,
+    /// Total ozone column in Dobson units, 0 to 1000 (physical only; default 300).
+    #[arg(long, value_name = "DU", allow_negative_numbers = true)]
+    ozone_du: Option<f64>,
+    /// Lambertian ground albedo, 0 to 1 (physical only; default 0.2).
+    #[arg(long, value_name = "A", allow_negative_numbers = true)]
+    albedo: Option<f64>,
+    /// Folder of precomputed atmospheres (physical only; default $SKY_TRAIN_CACHE_DIR, else
+    /// $XDG_CACHE_HOME/sky-train, else ~/.cache/sky-train).
+    #[arg(long, value_name = "DIR")]
+    cache_dir: Option<PathBuf>,
+}
+
+impl AtmosphereArgs {
+    /// The physical model's options.
+    #[must_use]
+    pub fn options(&self) -> sources::PhysicalOptions {
+        sources::PhysicalOptions {
+            aod: self.aod,
+            angstrom: self.angstrom,
+            aerosol_ssa: self.aerosol_ssa,
+            aerosol_g: self.aerosol_g,
+            ozone_du: self.ozone_du,
+            albedo: self.albedo,
+            cache_dir: self.cache_dir.clone(),
+        }
+    }
 }
 
 /// A sun's zenith and azimuth in degrees and the day of the year, each when known.
@@ -132,6 +187,7 @@ impl SkyArgs {
             dhi: self.dhi,
             global_lux: self.global_lux,
             day_of_year,
+            physical: self.atmosphere.options(),
         })
     }
 

@@ -8,6 +8,7 @@ mod cie;
 mod hosek;
 mod neural;
 mod perez;
+mod physical;
 mod preetham;
 mod sh;
 
@@ -23,6 +24,7 @@ pub use cie::Cie;
 pub use hosek::Hosek;
 pub use neural::Neural;
 pub use perez::Perez;
+pub use physical::{Physical, PhysicalOptions};
 pub use preetham::Preetham;
 pub use sh::Sh;
 
@@ -75,6 +77,10 @@ pub enum ModelKind {
     /// The Perez all-weather sky of a measurement (sky-core; `--ghi`, optionally `--dhi`, or
     /// `--global-lux`).
     Perez,
+    /// The physically based spectral atmosphere (sky-train's `physical`: multiple scattering,
+    /// ozone, aerosol, the Earth's shadow; sun zenith 0-108 deg; `--aod` or `--turbidity`,
+    /// `--ozone-du`, `--albedo`, ...).
+    Physical,
 }
 
 impl ModelKind {
@@ -91,6 +97,7 @@ impl ModelKind {
             | Self::Cie
             | Self::Perez => (0.0, 90.0),
             Self::Neural => (0.0, 180.0),
+            Self::Physical => (0.0, crate::physical::sky::MAX_SUN_ZENITH_DEG),
         }
     }
 
@@ -109,6 +116,7 @@ impl ModelKind {
             Self::Sh => (2.5, 6.0),
             Self::Hosek | Self::NeuralHosek => (1.0, 10.0),
             Self::Neural => (0.0, f64::INFINITY),
+            Self::Physical => crate::physical::atmosphere::TURBIDITY_RANGE,
             // AOAS has no turbidity (its atmosphere is set by its style), nor have the weather
             // skies (set by their type or measurement).
             Self::Aoas | Self::Cie | Self::Perez => (0.0, 0.0),
@@ -128,6 +136,7 @@ impl fmt::Display for ModelKind {
             Self::Sh => "sh",
             Self::Cie => "cie",
             Self::Perez => "perez",
+            Self::Physical => "physical",
         })
     }
 }
@@ -163,6 +172,8 @@ pub struct SkyParams {
     pub global_lux: Option<f64>,
     /// The day of the year of the measurement, for the extraterrestrial irradiance (perez).
     pub day_of_year: Option<u32>,
+    /// The atmosphere and cache of the physical model (physical only).
+    pub physical: PhysicalOptions,
 }
 
 impl SkyParams {
@@ -233,6 +244,7 @@ pub fn build(kind: ModelKind, params: &SkyParams) -> Result<Box<dyn SkySource>, 
         ModelKind::Sh => Ok(Box::new(Sh::new(params)?)),
         ModelKind::Cie => Ok(Box::new(Cie::new(params)?)),
         ModelKind::Perez => Ok(Box::new(Perez::new(params)?)),
+        ModelKind::Physical => Ok(Box::new(Physical::new(params)?)),
     }
 }
 
@@ -249,7 +261,7 @@ impl SkyParams {
             return refuse("--style", "aoas");
         }
         if self.turbidity.is_some() && !kind.uses_turbidity() {
-            return refuse("--turbidity", "preetham, hosek, neural*, sh");
+            return refuse("--turbidity", "preetham, hosek, neural*, sh, physical");
         }
         if self.bands.is_some() && kind != ModelKind::Sh {
             return refuse("--bands", "sh");
@@ -278,6 +290,11 @@ impl SkyParams {
             .find(|(_, given)| *given && kind != ModelKind::Perez)
         {
             return refuse(flag, "perez");
+        }
+        if let Some(flag) = self.physical.first_flag()
+            && kind != ModelKind::Physical
+        {
+            return refuse(flag, "physical");
         }
         Ok(())
     }

@@ -1,0 +1,328 @@
+//! `sky-train daylight`: horizontal illuminance, chromaticity, CCT and melanopic EDI against
+//! the sun's elevation, as CSV: the physical atmosphere (global = diffuse + direct) or, for
+//! comparison, today's Preetham sky with sky-core's twilight (sky only, direct 0).
+
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use anyhow::Result;
+use clap::Args;
+use sky_core::photometry::Photometry;
+
+use super::AtmosphereArgs;
+use crate::args::{ParamError, radians};
+use crate::physical::photometry::Colorimetry;
+use crate::physical::solar;
+use crate::sources::ModelKind;
+
+/// The sun elevations `daylight` covers, degrees (geometric; −18° ends astronomical twilight).
+pub const ELEVATION_RANGE: (f64, f64) = (-18.0, 90.0);
+
+/// `daylight`'s arguments.
+#[derive(Args)]
+pub struct DaylightArgs {
+    /// The model: physical, or preetham (sky only, as `schedule` computes it).
+    #[arg(long, value_enum, default_value_t = ModelKind::Physical)]
+    model: ModelKind,
+    /// Geometric sun elevations FROM:TO:STEP in degrees (-18 to 90; STEP > 0; at most 10,000
+    /// rows), e.g. -18:90:1.
+    #[arg(long, value_name = "FROM:TO:STEP", allow_hyphen_values = true, value_parser = elevations)]
+    elevations: (f64, f64, f64),
+    /// Turbidity: Preetham's (2 to 6, default 3) for preetham; for physical 1 to 10, mapped to
+    /// the aerosol optical depth (excludes --aod).
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
+    turbidity: Option<f64>,
+    /// The date, YYYY-MM-DD, for the Earth-Sun distance (physical; default: 1 AU).
+    #[arg(long, value_name = "YYYY-MM-DD", value_parser = crate::args::date)]
+    date: Option<(i32, u32, u32)>,
+    #[command(flatten)]
+    atmosphere: AtmosphereArgs,
+    /// Also draw global, diffuse and direct illuminance against elevation (log scale) beside
+    /// the USNO clear-sky record and Preetham's sky-only curve (turbidity 3), as SVG (physical
+    /// only).
+    #[arg(long, value_name = "FILE.svg")]
+    plot_illuminance: Option<PathBuf>,
+    /// Also draw the CCT of the global light against elevation beside Preetham's, as SVG
+    /// (physical only).
+    #[arg(long, value_name = "FILE.svg")]
+    plot_cct: Option<PathBuf>,
+}
+
+type Row = (f64, f64, f64, Colorimetry);
+
+fn physical_rows(args: &DaylightArgs, list: &[f64]) -> Result<Vec<Row>, ParamError> {
+    let atm = args.atmosphere.options().load(args.turbidity)?;
+    let scale = args.date.map_or(1.0, |(y, m, d)| {
+        solar::eccentricity_correction(solar::day_of_year(y, m, d))
+    });
+    list.iter()
+        .map(|&h| {
+            let sky = atm
+                .sky(90.0 - h, 0.0)
+                .map_err(|e| ParamError(e.to_string()))?
+                .with_irradiance_scale(scale);
+            let d = sky.daylight();
+            Ok((h, d.diffuse.xyz[1], d.direct.xyz[1], d.global))
+        })
+        .collect()
+}
+
+/// Today's sky-only figures: sky-core's Preetham sky with its twilight blend.
+fn preetham_rows(list: &[f64], turbidity: f64) -> Result<Vec<Row>, ParamError> {
+    list.iter()
+        .map(|&h| {
+            let sun = sky_core::Sun::new(radians(90.0 - h), 0.0)
+                .map_err(|e| ParamError(format!("--elevations {h}: {e}")))?;
+            #[allow(clippy::cast_possible_truncation)]
+            let e = sky_core::twilight::Daylight::new(sun, turbidity as f32)
+                .map_err(|e| ParamError(format!("--elevations {h}: {e}")))?
+                .horizontal_illuminance();
+            let (x, y, z) = (f64::from(e.x), f64::from(e.y), f64::from(e.z));
+            // No spectrum, so no melanopic EDI.
+            Ok((h, y, 0.0, Colorimetry::from_channels([x, y, z, f64::NAN])))
+        })
+        .collect()
+}
+
+fn check_svg(flag: &str, path: &Path) -> Result<(), ParamError> {
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    if path.extension().is_none_or(|e| e != "svg") || !dir.is_dir() {
+        return Err(ParamError(format!(
+            "{flag} {}: expected a .svg file in an existing folder",
+            path.display()
+        )));
+    }
+    Ok(())
+}
+
+fn plots(args: &DaylightArgs, rows: &[Row]) -> Result<()> {
+    use super::daylight_plot::{Curve, chart};
+    use plotters::style::RGBColor;
+    let list: Vec<f64> = rows.iter().map(|r| r.0).collect();
+    let preetham = preetham_rows(&list, 3.0)?;
+    let curve = |name: &str, color, points_only, f: &dyn Fn(&Row) -> f64, rows: &[Row]| Curve {
+        name: name.to_owned(),
+        color,
+        points_only,
+        points: rows.iter().map(|r| (r.0, f(r))).collect(),
+    };
+    let (lo, hi) = (
+        list.iter().copied().fold(f64::INFINITY, f64::min),
+        list.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+    );
+    let usno = RGBColor(0, 0, 0);
+    if let Some(path) = &args.plot_illuminance {
+        let record: Vec<Row> = list
+            .iter()
+            .map(|&h| {
+                (
+                    h,
+                    crate::physical::record::usno_illuminance(h),
+                    0.0,
+                    Colorimetry::from_channels([0.0; 4]),
+                )
+            })
+            .collect();
+        chart(
+            path,
+            "Horizontal illuminance of the clear sky",
+            "illuminance (lx)",
+            (lo, hi),
+            (1e-4, 3e5),
+            true,
+            &[
+                curve(
+                    "USNO Circular 171 (measured, Brown 1952)",
+                    usno,
+                    false,
+                    &|r| r.1,
+                    &record,
+                ),
+                curve(
+                    "physical: global",
+                    RGBColor(200, 30, 30),
+                    false,
+                    &|r| r.3.xyz[1],
+                    rows,
+                ),
+                curve(
+                    "physical: diffuse (sky)",
+                    RGBColor(30, 90, 220),
+                    false,
+                    &|r| r.1,
+                    rows,
+                ),
+                curve(
+                    "physical: direct (sun)",
+                    RGBColor(230, 150, 0),
+                    false,
+                    &|r| r.2,
+                    rows,
+                ),
+                curve(
+                    "Preetham + twilight, sky only (T = 3)",
+                    RGBColor(130, 130, 130),
+                    false,
+                    &|r| r.1,
+                    &preetham,
+                ),
+            ],
+        )?;
+    }
+    if let Some(path) = &args.plot_cct {
+        let cct = |r: &Row| r.3.cct_duv.map_or(f64::NAN, |c| c.0);
+        // The landmarks issue 15 states after measured twilight spectra (Spitschan et al. 2016,
+        // Hernández-Andrés et al. 2001): about 6,000 K at 20°, at least 9,000 K at 0° and
+        // 12,000 K at −4°.
+        let marks: Vec<Row> = [(20.0, 6_000.0), (0.0, 9_000.0), (-4.0, 12_000.0)]
+            .iter()
+            .map(|&(h, k)| (h, k, 0.0, Colorimetry::from_channels([0.0; 4])))
+            .collect();
+        chart(
+            path,
+            "CCT of the global horizontal light",
+            "CCT (K)",
+            (lo.max(-8.0), hi),
+            (3_000.0, 30_000.0),
+            true,
+            &[
+                curve("physical", RGBColor(200, 30, 30), false, &cct, rows),
+                curve(
+                    "Preetham + twilight (T = 3)",
+                    RGBColor(130, 130, 130),
+                    false,
+                    &cct,
+                    &preetham,
+                ),
+                curve(
+                    "issue 15's landmarks after measured twilight",
+                    usno,
+                    true,
+                    &|r| r.1,
+                    &marks,
+                ),
+            ],
+        )?;
+    }
+    Ok(())
+}
+
+/// The CSV header of `daylight`.
+pub const HEADER: &str =
+    "sun_elevation_deg,global_lux,diffuse_lux,direct_lux,x,y,cct_k,duv,melanopic_edi_lux";
+
+/// Parses FROM:TO:STEP.
+///
+/// # Errors
+/// Not three numbers, outside [`ELEVATION_RANGE`], a step that is not positive or gives more
+/// than 10,000 rows.
+pub fn elevations(s: &str) -> Result<(f64, f64, f64), String> {
+    let (lo, hi) = ELEVATION_RANGE;
+    let bad = || {
+        format!(
+            "expected FROM:TO:STEP in degrees with FROM and TO in [{lo}, {hi}] and STEP > 0 (at most 10000 rows), e.g. -18:90:1"
+        )
+    };
+    let v: Vec<f64> = s
+        .split(':')
+        .map(|p| p.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| bad())?;
+    let [from, to, step] = v[..] else {
+        return Err(bad());
+    };
+    let ok = (lo..=hi).contains(&from)
+        && (lo..=hi).contains(&to)
+        && step > 0.0
+        && step.is_finite()
+        && ((to - from).abs() / step) < 10_000.0;
+    if ok { Ok((from, to, step)) } else { Err(bad()) }
+}
+
+/// The elevations of FROM:TO:STEP, from FROM towards TO.
+#[must_use]
+pub fn elevation_list((from, to, step): (f64, f64, f64)) -> Vec<f64> {
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let n = ((to - from).abs() / step + 1e-9).floor() as usize + 1;
+    let sign = if to >= from { 1.0 } else { -1.0 };
+    #[allow(clippy::cast_precision_loss)]
+    (0..n).map(|k| from + sign * step * k as f64).collect()
+}
+
+fn field(v: Option<f64>, precision: usize) -> String {
+    v.filter(|x| x.is_finite())
+        .map_or_else(String::new, |x| format!("{x:.precision$}"))
+}
+
+/// Writes one row per elevation to `output`.
+///
+/// # Errors
+/// Bad parameters as a [`ParamError`], a failed write.
+pub fn run(args: &DaylightArgs, output: &mut dyn Write) -> Result<()> {
+    let list = elevation_list(args.elevations);
+    let plotting = args.plot_illuminance.is_some() || args.plot_cct.is_some();
+    if let Some(p) = &args.plot_illuminance {
+        check_svg("--plot-illuminance", p)?;
+    }
+    if let Some(p) = &args.plot_cct {
+        check_svg("--plot-cct", p)?;
+    }
+    let rows = match args.model {
+        ModelKind::Physical => physical_rows(args, &list)?,
+        ModelKind::Preetham => {
+            if let Some(flag) = args.atmosphere.options().first_flag() {
+                return Err(ParamError(format!(
+                    "{flag} does not apply to --model preetham (only to --model physical)"
+                ))
+                .into());
+            }
+            if args.date.is_some() || plotting {
+                return Err(ParamError(
+                    "--date and --plot-* do not apply to --model preetham (only to --model physical)".into(),
+                )
+                .into());
+            }
+            let t = args.turbidity.unwrap_or(3.0);
+            if !(2.0..=6.0).contains(&t) {
+                return Err(ParamError(format!(
+                    "--turbidity {t} is outside the valid range [2, 6] for --model preetham"
+                ))
+                .into());
+            }
+            preetham_rows(&list, t)?
+        }
+        other => {
+            return Err(ParamError(format!(
+                "--model {other}: daylight takes --model physical or --model preetham"
+            ))
+            .into());
+        }
+    };
+    if plotting {
+        plots(args, &rows)?;
+    }
+    let mut out = BufWriter::new(output);
+    writeln!(out, "{HEADER}")?;
+    for (h, diffuse, direct, g) in rows {
+        writeln!(
+            out,
+            "{h},{:.6e},{:.6e},{:.6e},{},{},{},{},{}",
+            g.xyz[1],
+            diffuse,
+            direct,
+            field(Some(g.xy.0), 5),
+            field(Some(g.xy.1), 5),
+            field(g.cct_duv.map(|c| c.0), 0),
+            field(g.cct_duv.map(|c| c.1), 5),
+            field(
+                Some(g.melanopic_edi).filter(|_| args.model == ModelKind::Physical),
+                6
+            ),
+        )?;
+    }
+    out.flush()?;
+    Ok(())
+}
