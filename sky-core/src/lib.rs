@@ -69,7 +69,7 @@
 //! | all of these for one time and place, as `sky-train schedule` and the firmware compute it, optionally driven by an outdoor sensor | [`controller::step`] |
 //! | W/m² to lux (Perez 1990 global, diffuse and direct efficacy) | [`efficacy`] |
 //! | a global reading split into diffuse and direct (Erbs et al. 1982) | [`decomposition`] |
-//! | the colour of daylight from clear to overcast | [`overcast`] |
+//! | the colour of daylight from clear to overcast; the melanopic DER of daylight (CIE S 026) | [`overcast`] |
 //!
 //! ```
 //! use sky_core::solar::{Site, SunPosition, UtcTime};

@@ -1,30 +1,47 @@
-//! The colour of daylight under cloud, continuous from the clear sky to the overcast.
+//! The colour and melanopic content of daylight under cloud, continuous from the clear sky to
+//! the overcast.
 //!
-//! Lee & Hernández-Andrés, *Colors of the daytime overcast sky* (Applied Optics 44(27), 2005),
-//! measured daylight spectra beneath overcasts: overcasts are not spectrally neutral; they make
-//! daylight **bluer** than clear-sky daylight (sun and sky together, whose typical CCT is about
-//! 5,700 K in Hernández-Andrés et al.'s two-year Granada record, JOSA A 18(6), 2001), and the
-//! bluing grows with the cloud's optical depth. The CIE gives its daylight illuminant D65
-//! (6,504 K) for overcast daylight (as the same paper notes).
+//! **What is measured.** Lee & Hernández-Andrés, *Colors of the daytime overcast sky* (Applied
+//! Optics 44(27), 5712-5722, 2005), measured daylight spectra (sky and sun, horizontal)
+//! beneath overcasts: overcasts are not spectrally neutral; they make daylight **bluer** than
+//! clear-sky daylight, and the bluing grows with the cloud's optical depth (their abstract).
+//! Hernández-Andrés, Romero, Nieves & Lee, *Color and spectral analysis of daylight in southern
+//! Europe* (JOSA A 18(6), 1325-1335, 2001; 2,600 global spectra in all sky states over two
+//! years at Granada): a CCT of 5,700 K best typifies daylight, and its chromaticities lie far
+//! above the CIE daylight locus above 9,000 K (their abstract). The CIE gives its daylight
+//! illuminant D65 (6,504 K) for overcast daylight (as Lee & Hernández-Andrés note, §1).
 //!
-//! The model here is an additive mixture, at equal luminance, of the clear sky's light and
-//! overcast light of D65's chromaticity, weighted by the **overcast fraction** w:
+//! **The colour model** ([`daylight_under_cloud`]) is an additive mixture, at equal luminance,
+//! of the clear sky's light and overcast light of D65's chromaticity, weighted by the
+//! **overcast fraction** w ([`overcast_fraction`]):
 //!
 //! XYZ / Y = (1 − w) XYZ_clear / Y_clear + w XYZ_D65 / Y_D65,
 //!
 //! with w = 0 at or above the clear-sky level (clear-sky index k_c ≥ 1), rising linearly to 1 at
 //! k_c = [`OVERCAST_CLEAR_SKY_INDEX`] and 1 below it, so the colour is continuous in the
-//! measurement and exactly the clear sky's at the clear-sky level.
+//! measurement and exactly the clear sky's at the clear-sky level. Against a clear level of the
+//! measured typical 5,700 K the overcast end is bluer (6,504 K), as measured.
 //!
-//! **What it is fitted to, and its error**: nothing measured is fitted here. The overcast end is
-//! the CIE's D65, not a fit to Lee & Hernández-Andrés's data, and the model does not follow their
-//! further bluing with optical depth; the 0.3 of the ramp is this crate's choice, not a fit. Its error against measured
-//! daylight is not known. The melanopic content of cloudy daylight is not modelled.
+//! **What it is fitted to, and its error**: nothing measured is fitted. The published numbers
+//! available to this project (the abstracts above) state the direction of the change and the
+//! typical clear daylight, not a relation between transmittance (or optical depth) and CCT that
+//! could be fitted, so the overcast end is the CIE's D65 and the 0.3 of the ramp is an explicit
+//! choice of this crate, not a fit; the further bluing with optical depth is not followed. The
+//! model's error against measured overcast daylight is not known.
+//!
+//! **Melanopic content** ([`melanopic_der`]): the melanopic daylight (D65) efficacy ratio of CIE
+//! S 026:2018 (melanopic EDI over illuminance) of the CIE daylight illuminant D_T at a CCT T,
+//! 4,000-25,000 K. The CIE daylight illuminants were built from measured daylight spectra,
+//! overcast ones included (Judd, MacAdam & Wyszecki 1964, J. Opt. Soc. Am. 54(8), 1031-1040),
+//! so DER(T) at the CCT of the modelled daylight is its melanopic content to the extent that
+//! daylight follows D_T.
 
 use glam::Vec3;
 
 use crate::cie::D65;
 use crate::color::{self, Xyy};
+
+mod daylight_basis;
 
 /// The clear-sky index at and below which the sky counts as fully overcast (module docs).
 pub const OVERCAST_CLEAR_SKY_INDEX: f32 = 0.3;
@@ -48,7 +65,9 @@ pub fn overcast_fraction(clear_sky_index: f32) -> f32 {
 /// The daylight of illuminance `illuminance` (lux) under a sky of overcast fraction
 /// `overcast_fraction` (clamped to [0, 1]) whose clear-sky light is `clear` (XYZ, any positive
 /// scale), as XYZ with Y = `illuminance`. At w = 0 the result is `clear` scaled to the
-/// illuminance; a black `clear` gives D65's chromaticity.
+/// illuminance; a black or non-finite `clear`, or one whose scaled light would overflow, gives
+/// D65's chromaticity, so the result is finite for any `clear` and `overcast_fraction` at a
+/// finite illuminance.
 ///
 /// ```
 /// use sky_core::overcast::daylight_under_cloud;
@@ -73,10 +92,89 @@ pub fn daylight_under_cloud(clear: Vec3, overcast_fraction: f32, illuminance: f3
     if !(clear.y > 0.0 && clear.is_finite()) {
         return overcast * illuminance;
     }
-    if w == 0.0 {
-        return clear * (illuminance / clear.y);
+    let light = if w == 0.0 {
+        clear * (illuminance / clear.y)
+    } else {
+        ((1.0 - w) * (clear / clear.y) + w * overcast) * illuminance
+    };
+    // A clear light of no real colour (X or Z overflowing over a tiny Y) counts as black.
+    if light.is_finite() {
+        light
+    } else {
+        overcast * illuminance
     }
-    ((1.0 - w) * (clear / clear.y) + w * overcast) * illuminance
+}
+
+/// The lowest CCT of the CIE daylight locus, K (CIE 015:2004 §3.1).
+pub const DAYLIGHT_MIN_CCT: f32 = 4_000.0;
+/// The highest CCT of the CIE daylight locus, K (CIE 015:2004 §3.1).
+pub const DAYLIGHT_MAX_CCT: f32 = 25_000.0;
+/// The CCT of D65 as the daylight formulas take it, K: 6,500 × 1.4388 / 1.4380 (the change of
+/// c₂ since D65 was defined; CIE 015:2004 §3.1).
+pub const D65_CCT: f32 = 6_503.6;
+
+/// The CIE daylight locus (CIE 015:2004 §3.1): the chromaticity (x_D, y_D) of the daylight
+/// illuminant D_T at CCT `kelvin`, clamped to [`DAYLIGHT_MIN_CCT`]-[`DAYLIGHT_MAX_CCT`] (NaN
+/// counts as [`D65_CCT`]):
+///
+/// x_D = −4.6070·10⁹/T³ + 2.9678·10⁶/T² + 0.09911·10³/T + 0.244063 (4,000-7,000 K),
+/// x_D = −2.0064·10⁹/T³ + 1.9018·10⁶/T² + 0.24748·10³/T + 0.237040 (7,000-25,000 K),
+/// y_D = −3.000 x_D² + 2.870 x_D − 0.275.
+///
+/// ```
+/// use sky_core::overcast::daylight_locus;
+/// // D65's tabulated chromaticity is (0.31272, 0.32903); the formula's y_D is 1e-4 above it.
+/// let (x, y) = daylight_locus(6_503.6);
+/// assert!((x - 0.31272).abs() < 5e-6 && (y - 0.32913).abs() < 5e-6);
+/// ```
+#[must_use]
+pub fn daylight_locus(kelvin: f32) -> (f32, f32) {
+    let t = if kelvin.is_nan() {
+        D65_CCT
+    } else {
+        kelvin.clamp(DAYLIGHT_MIN_CCT, DAYLIGHT_MAX_CCT)
+    };
+    let u = 1_000.0 / t; // the polynomials in 10³/T
+    let x = if t <= 7_000.0 {
+        ((-4.6070 * u + 2.9678) * u + 0.09911) * u + 0.244_063
+    } else {
+        ((-2.0064 * u + 1.9018) * u + 0.24748) * u + 0.237_040
+    };
+    (x, (-3.000 * x + 2.870) * x - 0.275)
+}
+
+/// The melanopic daylight (D65) efficacy ratio (CIE S 026:2018: melanopic EDI over
+/// illuminance, dimensionless, 1 for D65) of the CIE daylight illuminant D_T of CCT `kelvin`
+/// (clamped to [`DAYLIGHT_MIN_CCT`]-[`DAYLIGHT_MAX_CCT`]; NaN counts as [`D65_CCT`]). The
+/// melanopic EDI of daylight of illuminance E (lux) and CCT T is `melanopic_der(T) * E`.
+///
+/// D_T = S0 + M1 S1 + M2 S2 (CIE 015:2004 §3.1, with M = 0.0241 + 0.2562 x_D − 0.7341 y_D,
+/// M1 = (−1.3515 − 1.7703 x_D + 5.9114 y_D) / M, M2 = (0.0300 − 31.4424 x_D + 30.0717 y_D) / M),
+/// so the ratio is exact in the six integrals of S0, S1, S2 against ȳ and the S 026 melanopic
+/// action spectrum (generated constants, 10 nm bins, 360-830 nm). **Error**: within 2e-6
+/// (relative; 5.2e-7 measured) of the f64 spectra on the same bins over the whole range, and
+/// within 0.1 % of published values (D65: 1 by definition, 0.9997 here; D55: 0.90402 in the
+/// CIE S 026 metrology of F. Rudawski's Lighting Toolbox, 0.9040 here); `tests/tests/overcast.rs`
+/// holds both. For daylight off the locus (Duv ≠ 0) it is the DER of the daylight illuminant
+/// of the same CCT, not of the light itself.
+///
+/// ```
+/// use sky_core::overcast::melanopic_der;
+/// assert!((melanopic_der(6_503.6) - 1.0).abs() < 1e-3);     // D65, by S 026's definition
+/// assert!(melanopic_der(5_000.0) < melanopic_der(10_000.0)); // bluer daylight, more melanopic
+/// ```
+#[must_use]
+pub fn melanopic_der(kelvin: f32) -> f32 {
+    use daylight_basis::{ILLUMINANCE, MELANOPIC_EDI};
+    let (x, y) = daylight_locus(kelvin);
+    // M, M·M1 and M·M2: the ratio is homogeneous in the weights, so M cancels.
+    let w = [
+        0.0241 + 0.2562 * x - 0.7341 * y,
+        -1.3515 - 1.7703 * x + 5.9114 * y,
+        0.0300 - 31.4424 * x + 30.0717 * y,
+    ];
+    let dot = |c: [f32; 3]| w[0] * c[0] + w[1] * c[1] + w[2] * c[2];
+    dot(MELANOPIC_EDI) / dot(ILLUMINANCE)
 }
 
 #[cfg(test)]
