@@ -126,6 +126,7 @@ pub mod cct;
 pub mod cie;
 pub mod color;
 pub mod controller;
+pub mod daylight;
 pub mod decomposition;
 pub mod efficacy;
 mod error;
