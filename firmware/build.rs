@@ -272,8 +272,8 @@ const CONTROLLER_SITE: (f64, f64, f64) = (48.21, 16.37, 190.0);
 const CONTROLLER_DATE: (i32, u32, u32) = (2026, 3, 20);
 /// Minutes between steps (144 steps over the day).
 const CONTROLLER_STEP_MIN: u32 = 10;
-/// Preetham turbidity of the clear sky.
-const CONTROLLER_TURBIDITY: f32 = 3.0;
+/// Aerosol optical depth at 550 nm of the clear sky: sky-core's default atmosphere.
+const CONTROLLER_AOD: f32 = sky_core::daylight::DEFAULT_AOD;
 /// Horizontal illuminance (lux) at which the luminaire gives its full output.
 const CONTROLLER_FULL_SCALE_LUX: f32 = 10_000.0;
 /// PWM resolution of the channel levels, bits.
@@ -301,6 +301,20 @@ fn controller_day() -> Result<ControllerDay, Box<dyn Error>> {
     ))
 }
 
+/// The controller examples' settings: the global light of the default atmosphere.
+fn controller_settings() -> controller::Settings {
+    controller::Settings {
+        aerosol_optical_depth: CONTROLLER_AOD,
+        light: controller::Light::Global,
+        full_scale_lux: CONTROLLER_FULL_SCALE_LUX,
+    }
+}
+
+/// CCT and Duv of a step, 0 where undefined (|Duv| > 0.05), as the examples compare them.
+fn cct_or_zero(s: &controller::Step) -> (f32, f32) {
+    s.cct.map_or((0.0, 0.0), |c| (c.kelvin, c.duv))
+}
+
 /// Rust source of the controller example's `STEPS`: for every step of the day, what
 /// [`controller::step`] (the function `sky-train schedule` calls) gives on the host.
 fn controller_expected_table() -> Result<String, Box<dyn Error>> {
@@ -308,14 +322,8 @@ fn controller_expected_table() -> Result<String, Box<dyn Error>> {
     let mut steps = String::new();
     let mut count = 0;
     for (minute, time) in times {
-        let s = controller::step(
-            &time,
-            &site,
-            CONTROLLER_TURBIDITY,
-            CONTROLLER_FULL_SCALE_LUX,
-            &lamp,
-            None,
-        )?;
+        let s = controller::step(&time, &site, &controller_settings(), &lamp, None)?;
+        let (cct_k, duv) = cct_or_zero(&s);
         let pwm = s.drive.quantise(CONTROLLER_PWM_BITS)?;
         writeln!(
             steps,
@@ -324,8 +332,8 @@ fn controller_expected_table() -> Result<String, Box<dyn Error>> {
             s.sun.zenith_deg(),
             s.sun.azimuth_deg(),
             s.illuminance.y,
-            s.cct.kelvin,
-            s.cct.duv,
+            cct_k,
+            duv,
             s.drive.levels,
         )?;
         count += 1;
@@ -347,8 +355,8 @@ fn controller_config() -> String {
          const SITE: (f64, f64, f64) = {CONTROLLER_SITE:?};\n\
          /// UTC date (year, month, day).\n\
          const DATE: (i32, u32, u32) = {CONTROLLER_DATE:?};\n\
-         /// Preetham turbidity.\n\
-         const TURBIDITY: f32 = {CONTROLLER_TURBIDITY:?};\n\
+         /// Aerosol optical depth at 550 nm.\n\
+         const AOD: f32 = {CONTROLLER_AOD:?};\n\
          /// Horizontal illuminance (lux) at full output.\n\
          const FULL_SCALE_LUX: f32 = {CONTROLLER_FULL_SCALE_LUX:?};\n\
          /// PWM resolution, bits.\n\
@@ -387,7 +395,7 @@ fn weather_reading(
     let g = 1000.0 * cos_z * f;
     Ok(match index % 3 {
         0 => {
-            let clear = controller::clear_sky_illuminance(sun, CONTROLLER_TURBIDITY)?.y;
+            let clear = controller::clear_sky_illuminance(sun, CONTROLLER_AOD)?.y;
             Measurement::GlobalIlluminance(if f == 1.0 { clear } else { clear * f })
         }
         1 => Measurement::GlobalIrradiance(g),
@@ -407,14 +415,8 @@ fn weather_expected_table() -> Result<String, Box<dyn Error>> {
     for (index, (minute, time)) in times.into_iter().enumerate() {
         let sun = SunPosition::new(&time, &site)?;
         let reading = weather_reading(index, minute, &sun)?;
-        let s = controller::step(
-            &time,
-            &site,
-            CONTROLLER_TURBIDITY,
-            CONTROLLER_FULL_SCALE_LUX,
-            &lamp,
-            Some(reading),
-        )?;
+        let s = controller::step(&time, &site, &controller_settings(), &lamp, Some(reading))?;
+        let (cct_k, duv) = cct_or_zero(&s);
         let w = s.weather.ok_or("a measured step has its weather")?;
         let pwm = s.drive.quantise(CONTROLLER_PWM_BITS)?;
         let (kind, a, b) = match reading {
@@ -427,7 +429,7 @@ fn weather_expected_table() -> Result<String, Box<dyn Error>> {
             "    Expected {{ minute: {minute}, kind: {kind}, reading: {a:?}, diffuse: {b:?}, \
              lux: {:?}, cct_k: {:?}, duv: {:?}, sky_type: {}, clear_sky_index: {:?}, \
              levels: {:?}, pwm: {pwm:?} }},",
-            s.illuminance.y, s.cct.kelvin, s.cct.duv, w.sky_type, w.clear_sky_index, s.drive.levels,
+            s.illuminance.y, cct_k, duv, w.sky_type, w.clear_sky_index, s.drive.levels,
         )?;
         count += 1;
     }
