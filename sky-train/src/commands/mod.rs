@@ -15,6 +15,7 @@ pub mod export;
 pub mod fit_sh;
 pub mod fuzz_weights;
 pub mod gallery;
+pub mod locus_table;
 pub mod render;
 pub mod sample;
 pub mod schedule;

@@ -55,14 +55,8 @@ pub struct ScheduleArgs {
 
 #[allow(clippy::cast_possible_truncation)]
 fn aod(s: &str) -> Result<f32, String> {
-    use sky_core::daylight::{MAX_AOD, MIN_AOD};
-    in_range(
-        s,
-        f64::from(MIN_AOD),
-        f64::from(MAX_AOD),
-        "an aerosol optical depth",
-    )
-    .map(|v| v as f32)
+    // sky-core's daylight::MIN_AOD and MAX_AOD, as decimals (Daylight::new checks them again).
+    in_range(s, 0.05, 0.8, "an aerosol optical depth").map(|v| v as f32)
 }
 
 /// Preetham's turbidity, mapped to the aerosol optical depth (2 to 8.5: 0.100 to 0.75).
