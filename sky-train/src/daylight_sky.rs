@@ -27,6 +27,9 @@ pub const MAX_SUN_ZENITH_DEG: f64 = 108.0;
 /// The source name written into the weight file.
 pub const SOURCE: &str = "physical, XYZ / diffuse";
 
+/// One training example: a view direction and its normalised X, Y, Z.
+type Example = ([f64; 3], [f64; 3]);
+
 /// One atmosphere of the data set: its aerosol optical depth and tables.
 pub type Atmospheres = [(f64, Arc<PhysicalAtmosphere>)];
 
@@ -57,7 +60,7 @@ pub fn training_set(
         .flat_map(|a| zeniths_deg.iter().map(move |&z| (a, z)))
         .collect();
     let (nz, na) = strata;
-    let per_case: Vec<Result<Vec<([f64; 3], [f64; 3])>>> = cases
+    let per_case: Vec<Result<Vec<Example>>> = cases
         .par_iter()
         .enumerate()
         .map(|(k, &(a, z))| {

@@ -282,7 +282,7 @@ fn disc_fraction(elevation: f32) -> f32 {
     } else if s > -1.0 {
         (math::acos(-s) + s * math::sqrt(1.0 - s * s)) / core::f32::consts::PI
     } else {
-        0.0 // NaN too
+        0.0 // NaN too: never NaN out
     }
 }
 
@@ -290,7 +290,7 @@ fn disc_fraction(elevation: f32) -> f32 {
 /// depth `aod` (module docs).
 fn direct_normal(elevation: f32, aod: f32) -> [f32; 4] {
     let v = disc_fraction(elevation);
-    if !(v > 0.0) {
+    if v <= 0.0 {
         return [0.0; 4];
     }
     let n = tables::AIRMASS.len();

@@ -99,7 +99,7 @@ fn preetham_rows(list: &[f64], turbidity: f64) -> Result<Vec<Row>, ParamError> {
     use sky_core::photometry::Photometry;
     list.iter()
         .map(|&h| {
-            let sun = sky_core::Sun::new(radians(90.0 - h.min(90.0).max(0.0)), 0.0)
+            let sun = sky_core::Sun::new(radians(90.0 - h.clamp(0.0, 90.0)), 0.0)
                 .map_err(|e| ParamError(format!("--elevations {h}: {e}")))?;
             #[allow(clippy::cast_possible_truncation)]
             let e = sky_core::PreethamSky::new(sun, turbidity as f32)
