@@ -8,13 +8,13 @@
 //!
 //! * **The diffuse light** (the sky's): ln X, ln Y, ln Z and ln melanopic EDI against the sun
 //!   elevation at the reference's own sun-angle nodes (5° by day, 2° at dusk, 0.5° through
-//!   twilight, −18° to 90°: 72 nodes) and against the aerosol optical depth τ₅₅₀ at 0.05, 0.1,
+//!   twilight, −18° to 90°: 73 nodes) and against the aerosol optical depth τ₅₅₀ at 0.05, 0.1,
 //!   0.2, 0.4 and 0.8 (linear in elevation, quadratic in ln τ₅₅₀; 5.8 KB).
 //! * **The direct beam** (the sun's): Beer-Lambert's law per 10 nm bin, 360-830 nm, with the
 //!   reference's vertical Rayleigh, aerosol and ozone optical depths and its relative air
 //!   masses on its own coordinate x = √(sin h) (256 nodes; spherical Earth, no refraction),
 //!   times the visible fraction of the sun's disc (its 959.63″ radius: a half disc at h = 0°,
-//!   none below −0.27°). Exact in τ₅₅₀; 4.8 KB.
+//!   none below −0.27°). Exact in τ₅₅₀; 4.4 KB.
 //!
 //! The tables hold the reference's default constituents (Ångström exponent, aerosol albedo and
 //! asymmetry, 1 AU; ozone [`OZONE_DU`] DU, ground albedo [`GROUND_ALBEDO`]); the aerosol optical
