@@ -1,11 +1,11 @@
 //! A daylight luminaire's day: every two hours of the 2026 June solstice in Vienna, the sun's
-//! elevation, the sky's horizontal illuminance and colour temperature, and the levels of an
+//! elevation, the global daylight's horizontal illuminance and colour temperature, and the levels of an
 //! example RGBW luminaire (`sky_core::controller::step`, as the firmware computes it).
 //!
 //! `cargo run -p sky-core --example controller`
 
 use sky_core::SkyError;
-use sky_core::controller::{example_luminaire, step};
+use sky_core::controller::{Settings, example_luminaire, step};
 use sky_core::solar::{Site, UtcTime};
 
 fn main() -> Result<(), SkyError> {
@@ -14,13 +14,15 @@ fn main() -> Result<(), SkyError> {
     println!("UTC    sun elevation   horizontal lux   CCT (K)   R     G     B     W");
     for hour in (0..24).step_by(2) {
         let time = UtcTime::new(2026, 6, 21, hour, 0, 0.0)?;
-        let s = step(&time, &site, 3.0, 10_000.0, &lamp, None)?; // turbidity 3, full output at 10,000 lx
+        // The default atmosphere, the global light, full output at 10,000 lx.
+        let s = step(&time, &site, &Settings::default(), &lamp, None)?;
+        let cct = s.cct.map_or(f32::NAN, |c| c.kelvin); // none in nautical twilight
         let [r, g, b, w] = s.drive.levels;
         println!(
             "{hour:02}:00  {:>10.2}°   {:>14.1}   {:>7.0}   {r:.3} {g:.3} {b:.3} {w:.3}",
             s.sun.elevation_deg(),
             s.illuminance.y,
-            s.cct.kelvin
+            cct
         );
     }
     Ok(())

@@ -1,8 +1,9 @@
 //! One step of a daylight-following luminaire's schedule: from a UTC time and a site to the sun's
-//! position, the sky's horizontal illuminance and colour temperature, and the drive levels of an
-//! RGBW luminaire that reproduce that colour.
+//! position, the daylight's horizontal illuminance, chromaticity and colour temperature (the
+//! global light of sun and sky, or the sky alone: [`Light`]), and the drive levels of an RGBW
+//! luminaire that reproduce that chromaticity.
 //!
-//! Without a measurement the sky is the clear sky of [`clear_sky_illuminance`]. With one (an
+//! Without a measurement the light is the clear-sky daylight of [`crate::daylight`]. With one (an
 //! outdoor lux sensor, a pyranometer, or a pyranometer pair giving the diffuse too; see
 //! [`Measurement`], [`crate::measurement`]) the illuminance is the measured global one and its colour is that of daylight
 //! under cloud ([`crate::overcast`]), from the clear-sky index (measured over clear-sky global
@@ -17,16 +18,15 @@
 
 use glam::Vec3;
 
-use crate::cct::{self, Cct};
+use crate::cct::Cct;
 use crate::color::{self, Xyy};
+use crate::daylight::{self, Daylight};
 use crate::error::SkyError;
 use crate::led::{Channel, Drive, Luminaire};
 pub use crate::measurement::Measurement;
 use crate::overcast;
 use crate::perez::SkyCondition;
-use crate::photometry::Photometry;
 use crate::solar::{Site, SunPosition, UtcTime};
-use crate::twilight::Daylight;
 
 /// The example RGBW luminaire: typical LED chromaticities (CIE 1931 x, y) and outputs in lumens
 /// at full drive: red 625 nm (0.700, 0.295; 300 lm), green 525 nm (0.170, 0.700; 600 lm), royal
@@ -63,57 +63,98 @@ pub struct Weather {
     pub overcast_fraction: f32,
 }
 
+/// Which daylight the luminaire follows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Light {
+    /// Sun and sky on a horizontal plane (the global light): a room lit by a window the sun
+    /// shines through, or a luminaire standing in for the outdoors.
+    #[default]
+    Global,
+    /// The sky alone (the diffuse light): a north-facing window or a skylight the sun never
+    /// enters.
+    Sky,
+}
+
+/// The controller's settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Settings {
+    /// The clear atmosphere's aerosol optical depth at 550 nm ([`daylight::MIN_AOD`] to
+    /// [`daylight::MAX_AOD`]; [`daylight::DEFAULT_AOD`] is the clear-sky record's).
+    pub aerosol_optical_depth: f32,
+    /// The light followed.
+    pub light: Light,
+    /// The horizontal illuminance, lux, at which the luminaire gives its full output.
+    pub full_scale_lux: f32,
+}
+
+impl Default for Settings {
+    /// The default atmosphere, the global light, full output at 10,000 lx.
+    fn default() -> Self {
+        Self {
+            aerosol_optical_depth: daylight::DEFAULT_AOD,
+            light: Light::Global,
+            full_scale_lux: 10_000.0,
+        }
+    }
+}
+
 /// What the controller computes at one time.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Step {
     /// The sun (SPA: geometric and apparent zenith, compass azimuth).
     pub sun: SunPosition,
-    /// The sky's illuminance on a horizontal plane, CIE XYZ with Y in lux: the clear sky's
-    /// ([`clear_sky_illuminance`]) without a measurement, the measured global illuminance with
-    /// the colour of daylight under cloud with one.
+    /// The clear-sky daylight at this time and place (global, diffuse, direct, melanopic EDI).
+    pub daylight: Daylight,
+    /// The followed light's illuminance on a horizontal plane, CIE XYZ with Y in lux: the
+    /// clear sky's global or diffuse light ([`Light`]) without a measurement; with one, the
+    /// measured global (or diffuse) illuminance with the colour of that light under cloud.
     pub illuminance: Vec3,
-    /// CCT and Duv of that illuminance's chromaticity.
-    pub cct: Cct,
-    /// The luminaire's levels reproducing the sky's chromaticity, at a luminous output
-    /// proportional to the illuminance: full output (all channels' lumens) at `full_scale_lux`.
+    /// CCT and Duv of that illuminance's chromaticity; `None` where |Duv| >
+    /// [`daylight::MAX_DUV`] (the night-blue sky of nautical twilight).
+    pub cct: Option<Cct>,
+    /// The luminaire's levels reproducing the light's chromaticity (not its CCT: twilight blue
+    /// where the gamut allows), at a luminous output proportional to the illuminance: full
+    /// output (all channels' lumens) at `full_scale_lux`.
     pub drive: Drive<4>,
     /// What the measurement told, when there was one.
     pub weather: Option<Weather>,
 }
 
-/// The clear sky's horizontal illuminance for `sun` (XYZ, Y in lux), the one source of the
-/// controller's clear-sky level: [`Daylight`], the Preetham sky of `turbidity` (2 to 6) blended
-/// into twilight below the horizon. It is the **sky alone**, without the direct sun (sky-core has
-/// no direct-sun model yet), so the clear-sky index of a sunny day's global reading lies well
-/// above 1; replacing this function by a daylight model with the sun is the one change that
-/// makes the index measured over clear-sky *global* illuminance.
+/// The clear sky's global horizontal illuminance for `sun` (XYZ, Y in lux), the one source of
+/// the controller's clear-sky level: [`Daylight`] (sun and sky) under an atmosphere of aerosol
+/// optical depth `aod`. The clear-sky index is measured over it.
 ///
 /// # Errors
-/// [`SkyError::OutOfRange`] for a turbidity outside 2-6.
-pub fn clear_sky_illuminance(sun: &SunPosition, turbidity: f32) -> Result<Vec3, SkyError> {
-    Ok(Daylight::new(sun.sun(), turbidity)?.horizontal_illuminance())
+/// [`SkyError::OutOfRange`] for `aod` outside [[`daylight::MIN_AOD`], [`daylight::MAX_AOD`]].
+pub fn clear_sky_illuminance(sun: &SunPosition, aod: f32) -> Result<Vec3, SkyError> {
+    Ok(Daylight::new(sun.sun(), aod)?.global())
 }
 
-/// The controller's step at `time` for `site`: the sky (the clear sky of Preetham `turbidity`,
-/// 2 to 6, blended into twilight below the horizon, or what `measurement` says; module docs),
-/// its horizontal illuminance and CCT, and `lamp`'s drive levels (levels clip at full output
-/// when the sky is brighter than `full_scale_lux`, keeping the chromaticity). A measurement equal
-/// to the clear sky's illuminance gives the clear-sky step's illuminance, CCT and levels exactly.
+/// The controller's step at `time` for `site`: the clear-sky daylight ([`Daylight`]) or what
+/// `measurement` says (module docs), the followed light's ([`Settings::light`]) illuminance and
+/// CCT, and `lamp`'s drive levels (levels clip at full output when the light is brighter than
+/// `full_scale_lux`, keeping the chromaticity). A measurement equal to the clear sky's global
+/// illuminance gives the clear-sky step's global illuminance and levels exactly.
 ///
 /// ```
-/// use sky_core::controller::{example_luminaire, step, Measurement};
+/// use sky_core::controller::{example_luminaire, step, Light, Measurement, Settings};
 /// use sky_core::solar::{Site, UtcTime};
 ///
 /// let vienna = Site::new(48.21, 16.37, 190.0)?;
 /// let lamp = example_luminaire()?;
 /// let time = UtcTime::new(2026, 3, 20, 11, 0, 0.0)?;
-/// let noon = step(&time, &vienna, 3.0, 10_000.0, &lamp, None)?;
-/// assert!(noon.illuminance.y > 10_000.0);            // diffuse sky light, in lux
-/// assert!(noon.cct.kelvin > 5_000.0);                // a blue sky
+/// let settings = Settings::default();
+/// let noon = step(&time, &vienna, &settings, &lamp, None)?;
+/// assert!(noon.illuminance.y > 50_000.0);            // sun and sky, in lux
+/// assert!(noon.cct.expect("on the locus").kelvin > 4_500.0);
 /// let pwm = noon.drive.quantise(12)?;                // 12-bit duty cycles, R, G, B, W
 /// assert!(pwm.iter().any(|&d| d == 4095));           // brighter than full scale: clipped
 ///
-/// let dull = step(&time, &vienna, 3.0, 10_000.0, &lamp, Some(Measurement::GlobalIlluminance(4_000.0)))?;
+/// let north = Settings { light: Light::Sky, ..settings };
+/// let window = step(&time, &vienna, &north, &lamp, None)?;
+/// assert!(window.illuminance.y < 0.5 * noon.illuminance.y); // the sky alone
+///
+/// let dull = step(&time, &vienna, &settings, &lamp, Some(Measurement::GlobalIlluminance(4_000.0)))?;
 /// let weather = dull.weather.expect("measured");
 /// assert_eq!(dull.illuminance.y, 4_000.0);           // the measured illuminance
 /// assert!(weather.clear_sky_index < 0.3 && weather.overcast_fraction == 1.0);
@@ -122,18 +163,17 @@ pub fn clear_sky_illuminance(sun: &SunPosition, turbidity: f32) -> Result<Vec3, 
 /// ```
 ///
 /// # Errors
-/// [`SkyError::OutOfRange`] for a turbidity outside 2-6, a `full_scale_lux` that is not
-/// positive and finite, a bad measurement ([`Measurement`]), or a sky colour without a CCT (not
-/// seen for daylight).
+/// [`SkyError::OutOfRange`] for an aerosol optical depth out of range, a `full_scale_lux` that
+/// is not positive and finite, or a bad measurement ([`Measurement`]).
 #[inline] // with a literal `None`, the measurement path is left out of the binary
 pub fn step(
     time: &UtcTime,
     site: &Site,
-    turbidity: f32,
-    full_scale_lux: f32,
+    settings: &Settings,
     lamp: &Luminaire<4>,
     measurement: Option<Measurement>,
 ) -> Result<Step, SkyError> {
+    let full_scale_lux = settings.full_scale_lux;
     if !(full_scale_lux > 0.0 && full_scale_lux.is_finite()) {
         return Err(SkyError::OutOfRange {
             parameter: "full-scale illuminance [lx]",
@@ -143,12 +183,17 @@ pub fn step(
         });
     }
     let sun = SunPosition::new(time, site)?;
-    let clear = clear_sky_illuminance(&sun, turbidity)?;
+    let daylight = Daylight::new(sun.sun(), settings.aerosol_optical_depth)?;
+    let clear = daylight.global();
+    let followed = match settings.light {
+        Light::Global => clear,
+        Light::Sky => daylight.diffuse(),
+    };
     let (illuminance, weather) = match measurement {
-        None => (clear, None),
+        None => (followed, None),
         Some(m) => {
             let reading = m.read(sun.sun().zenith(), time.day_of_year())?;
-            // The clear sky is positive at every elevation (twilight's night floor included).
+            // The clear sky is positive at every elevation (the night holds -18 deg's light).
             let index = (reading.global_illuminance / clear.y.max(f32::MIN_POSITIVE)).min(f32::MAX);
             let w = overcast::overcast_fraction(index);
             let weather = Weather {
@@ -159,14 +204,17 @@ pub fn step(
                 clear_sky_index: index,
                 overcast_fraction: w,
             };
+            let measured = match settings.light {
+                Light::Global => reading.global_illuminance,
+                Light::Sky => reading.diffuse_illuminance(sun.sun().zenith()),
+            };
             (
-                overcast::daylight_under_cloud(clear, w, reading.global_illuminance),
+                overcast::daylight_under_cloud(followed, w, measured),
                 Some(weather),
             )
         }
     };
     let colour = color::xyz_to_xyy(illuminance);
-    let cct = cct::cct_duv(colour.x, colour.y)?;
     let full_output: f32 = lamp.channels().iter().map(|c| c.full_output).sum();
     let drive = lamp.drive(Xyy {
         luminance: full_output * illuminance.y / full_scale_lux,
@@ -174,8 +222,9 @@ pub fn step(
     });
     Ok(Step {
         sun,
+        daylight,
         illuminance,
-        cct,
+        cct: daylight::cct_of(illuminance),
         drive,
         weather,
     })

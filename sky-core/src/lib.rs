@@ -64,7 +64,7 @@
 //! | the sun's position from UTC time and place (NREL SPA), as a [`Sun`] for any model | [`solar`] |
 //! | zenith luminance, horizontal and tilted-plane illuminance (lux), mean colour over a cone of view | [`photometry::Photometry`] |
 //! | correlated colour temperature and Duv (ANSI C78.377 sign) | [`cct`] |
-//! | the sky at any sun elevation, twilight and night included | [`twilight::Daylight`] |
+//! | the daylight at any sun elevation, twilight and night included: global, diffuse and direct illuminance (lux), colour, melanopic EDI, the sun's light, a tilted plane | [`daylight::Daylight`] |
 //! | LED channel levels (RGB, RGBW, warm + cool white), hue-keeping gamut clipping, PWM quantisation | [`led`] |
 //! | all of these for one time and place, as `sky-train schedule` and the firmware compute it, optionally driven by an outdoor sensor | [`controller::step`] |
 //! | W/m² to lux (Perez 1990 global, diffuse and direct efficacy) | [`efficacy`] |
@@ -73,15 +73,14 @@
 //!
 //! ```
 //! use sky_core::solar::{Site, SunPosition, UtcTime};
-//! use sky_core::twilight::Daylight;
-//! use sky_core::Photometry;
+//! use sky_core::daylight::Daylight;
 //!
 //! let site = Site::new(51.48, 0.0, 45.0)?;                       // Greenwich
 //! let sun = SunPosition::new(&UtcTime::new(2026, 3, 20, 16, 0, 0.0)?, &site)?;
-//! let sky = Daylight::new(sun.sun(), 3.0)?;
-//! let e = sky.horizontal_illuminance();                          // XYZ, Y in lux
-//! let cct = sky_core::cct::cct_duv(e.x / (e.x + e.y + e.z), e.y / (e.x + e.y + e.z))?;
-//! assert!(e.y > 1_000.0 && cct.kelvin > 5_000.0);
+//! let day = Daylight::clear(sun.sun());
+//! let e = day.global();                                          // XYZ, Y in lux
+//! let cct = day.cct().expect("on the locus");
+//! assert!(e.y > 1_000.0 && cct.kelvin > 3_000.0);
 //! # Ok::<(), sky_core::SkyError>(())
 //! ```
 //!
@@ -126,6 +125,7 @@ pub mod cct;
 pub mod cie;
 pub mod color;
 pub mod controller;
+pub mod daylight;
 pub mod decomposition;
 pub mod efficacy;
 mod error;
@@ -140,7 +140,6 @@ pub mod photometry;
 pub mod preetham;
 pub mod sh;
 pub mod solar;
-pub mod twilight;
 
 pub use aoas::AoasSky;
 pub use cie::CieSky;

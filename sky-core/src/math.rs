@@ -82,6 +82,12 @@ pub(crate) fn exp_libm(x: f32) -> f32 {
     libm::expf(x)
 }
 
+/// arccos from libm, whatever the backend.
+#[inline]
+pub(crate) fn acos(x: f32) -> f32 {
+    libm::acosf(x)
+}
+
 /// The natural logarithm from libm, whatever the backend.
 #[inline]
 pub(crate) fn ln(x: f32) -> f32 {

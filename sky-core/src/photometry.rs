@@ -140,7 +140,7 @@ fn perpendicular(n: Vec3) -> Vec3 {
 
 /// Photometric quantities every sky model with an absolute luminance scale shares.
 ///
-/// Implemented for [`PreethamSky`], [`NeuralSky`], [`crate::twilight::Daylight`],
+/// Implemented for [`PreethamSky`], [`NeuralSky`],
 /// [`crate::CieSky`] and [`crate::PerezSky`] (luminance in cd/m², so illuminance in lux; the
 /// last two compute their horizontal illuminance with a finer rule, 8-point Gauss-Legendre panels graded
 /// towards the sun). The AOAS sky is not: its luminance is in

@@ -339,7 +339,7 @@ impl SunPosition {
     /// The [`Sun`] for the sky models: the geometric zenith, and the azimuth in the crate's
     /// convention (φ = 90° − compass azimuth), in radians. It feeds
     /// [`PreethamSky::new`](crate::PreethamSky::new), [`NeuralSky::new`](crate::NeuralSky::new),
-    /// [`Daylight::new`](crate::twilight::Daylight::new) (any elevation) and the AOAS sky's
+    /// [`Daylight::new`](crate::daylight::Daylight::new) (any elevation) and the AOAS sky's
     /// [`DayCycle::Sun`](crate::aoas::DayCycle::Sun); the first two reject a sun below the
     /// horizon.
     #[must_use]

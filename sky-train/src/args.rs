@@ -65,6 +65,25 @@ pub(crate) fn describe(
     }
 }
 
+/// Checks before long work that `path` (given as `flag`) names a `.{extension}` file in an
+/// existing folder.
+///
+/// # Errors
+/// `{flag} {path}: expected a .{extension} file in an existing folder`.
+pub fn check_output(flag: &str, path: &std::path::Path, extension: &str) -> Result<(), ParamError> {
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(std::path::Path::new("."));
+    if path.extension().is_none_or(|e| e != extension) || !dir.is_dir() {
+        return Err(ParamError(format!(
+            "{flag} {}: expected a .{extension} file in an existing folder",
+            path.display()
+        )));
+    }
+    Ok(())
+}
+
 /// Converts degrees to radians in f64 and rounds once to f32.
 #[allow(clippy::cast_possible_truncation)] // the point of the function
 #[must_use]

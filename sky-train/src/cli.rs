@@ -8,9 +8,10 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use crate::commands::{
-    self, SkyArgs, bench::BenchArgs, daylight::DaylightArgs, eval::EvalArgs, export::ExportArgs,
-    fit_sh::FitShArgs, fuzz_weights::FuzzArgs, gallery::GalleryArgs, locus_table::LocusTableArgs,
-    render::RenderArgs, schedule::ScheduleArgs, showcase::ShowcaseArgs, size_study::SizeStudyArgs,
+    self, SkyArgs, bench::BenchArgs, daylight::DaylightArgs, daylight_sky::DaylightSkyArgs,
+    daylight_tables::DaylightTablesArgs, eval::EvalArgs, export::ExportArgs, fit_sh::FitShArgs,
+    fuzz_weights::FuzzArgs, gallery::GalleryArgs, locus_table::LocusTableArgs, render::RenderArgs,
+    schedule::ScheduleArgs, showcase::ShowcaseArgs, size_study::SizeStudyArgs,
     spectrum::SpectrumArgs, train::TrainArgs,
 };
 
@@ -101,6 +102,14 @@ pub enum Command {
     /// (x, y of the global light; cct_k and duv empty where |Duv| > 0.05). --model physical:
     /// the spectral atmosphere, sun and sky; --model preetham: today's sky-only figures.
     Daylight(DaylightArgs),
+    /// sky-core's daylight tables (diffuse light against sun elevation and aerosol optical
+    /// depth; the direct beam's spectral constants) from the physical atmosphere: --sample
+    /// samples the reference into --data (slow), then the Rust tables are written from it.
+    DaylightTables(DaylightTablesArgs),
+    /// Train sky-core's daylight neural sky on the physical atmosphere's radiance over its
+    /// diffuse illuminance (sun zenith 0-108 deg, the tables' optical depths) and write its
+    /// weight file.
+    DaylightSky(DaylightSkyArgs),
 }
 
 /// Runs `command`, reading `sample`'s and `cct`'s input from `input` and writing its output to
@@ -128,5 +137,7 @@ pub fn execute(command: Command, input: &mut dyn BufRead, output: &mut dyn Write
         Command::Cct => commands::cct::run(input, output),
         Command::Spectrum(args) => commands::spectrum::run(&args, output),
         Command::Daylight(args) => commands::daylight::run(&args, output),
+        Command::DaylightTables(args) => commands::daylight_tables::run(&args, output),
+        Command::DaylightSky(args) => commands::daylight_sky::run(&args, output),
     }
 }

@@ -9,7 +9,7 @@ use anyhow::{Context, Result};
 use std::path::Path;
 
 use sky_core::cct;
-use sky_core::controller::{Measurement, Step, example_luminaire, step};
+use sky_core::controller::{Measurement, Settings, Step, example_luminaire, step};
 use sky_core::solar::{Site, UtcTime};
 
 use crate::captures::manifest::UnixTime;
@@ -29,14 +29,17 @@ pub struct ScheduleConfig {
     pub date: (i32, u32, u32),
     /// Minutes between rows (1 to 1440).
     pub step_minutes: u32,
-    /// Preetham turbidity (2 to 6).
-    pub turbidity: f32,
-    /// The horizontal illuminance (lux) at which the luminaire gives its full output.
-    pub full_scale_lux: f32,
+    /// The controller's settings: aerosol optical depth, the light followed, full scale.
+    pub settings: Settings,
 }
 
 /// The CSV header of `schedule`.
-pub const SCHEDULE_HEADER: &str = "utc,sun_zenith_deg,sun_azimuth_deg,sun_elevation_deg,apparent_zenith_deg,cct_k,duv,horizontal_lux,red,green,blue,white";
+///
+/// `horizontal_lux`, `x`, `y`, `cct_k` and `duv` are of the light followed (global, or the sky
+/// alone; under cloud with measurements), `cct_k` and `duv` empty where |Duv| > 0.05;
+/// `global_lux`, `diffuse_lux`, `direct_lux` and `melanopic_edi_lux` (of the global light) are
+/// the clear-sky daylight's.
+pub const SCHEDULE_HEADER: &str = "utc,sun_zenith_deg,sun_azimuth_deg,sun_elevation_deg,apparent_zenith_deg,cct_k,duv,horizontal_lux,red,green,blue,white,global_lux,diffuse_lux,direct_lux,x,y,melanopic_edi_lux";
 
 /// The columns `schedule --measurements` adds to [`SCHEDULE_HEADER`].
 pub const MEASURED_COLUMNS: &str = "sky_type,clear_sky_index";
@@ -122,29 +125,35 @@ pub fn read_measurements(path: &Path) -> Result<Vec<MeasuredRow>> {
     Ok(rows)
 }
 
-/// The fields of one schedule row after its time: sun, CCT, illuminance, levels.
+/// The fields of one schedule row after its time ([`SCHEDULE_HEADER`]).
 fn row_fields(s: &Step) -> String {
-    let (sun, c, e, levels) = (s.sun, s.cct, s.illuminance, s.drive.levels);
+    let (sun, e, levels, d) = (s.sun, s.illuminance, s.drive.levels, s.daylight);
+    let (cct_k, duv) = s.cct.map_or((String::new(), String::new()), |c| {
+        (format!("{:.2}", c.kelvin), format!("{:.6}", c.duv))
+    });
+    let (x, y) = sky_core::daylight::chromaticity(e);
     format!(
-        "{:.5},{:.5},{:.5},{:.5},{:.2},{:.6},{:.6e},{:.6},{:.6},{:.6},{:.6}",
+        "{:.5},{:.5},{:.5},{:.5},{cct_k},{duv},{:.6e},{:.6},{:.6},{:.6},{:.6},{:.6e},{:.6e},{:.6e},{x:.6},{y:.6},{:.6e}",
         sun.zenith_deg(),
         sun.azimuth_deg(),
         sun.elevation_deg(),
         sun.apparent_zenith_deg(),
-        c.kelvin,
-        c.duv,
         e.y,
         levels[0],
         levels[1],
         levels[2],
         levels[3],
+        d.global().y,
+        d.diffuse().y,
+        d.direct().y,
+        d.melanopic_edi(),
     )
 }
 
 /// Writes the schedule at the times of `rows` (from [`read_measurements`]) driven by their
 /// readings: the columns of [`SCHEDULE_HEADER`] and [`MEASURED_COLUMNS`] (`sky_type`, the Perez
 /// sky-clearness bin 1-8, 0 with the sun below the horizon; `clear_sky_index`, measured over the
-/// clear sky's horizontal illuminance). Every row is computed before anything is written.
+/// clear sky's global horizontal illuminance). Every row is computed before anything is written.
 ///
 /// # Errors
 /// Bad parameters or a bad reading as a [`ParamError`] naming the file's line.
@@ -159,23 +168,16 @@ pub fn schedule_measured(
     let lamp = example_luminaire()?;
     let mut lines = Vec::with_capacity(rows.len());
     for (i, r) in rows.iter().enumerate() {
-        let s = step(
-            &r.time,
-            &site,
-            config.turbidity,
-            config.full_scale_lux,
-            &lamp,
-            Some(r.measurement),
-        )
-        .map_err(|e| {
-            let what = crate::args::describe(e, str::to_owned, " = ");
-            ParamError(format!(
-                "--measurements {} data row {} ({}): {what}",
-                file.display(),
-                i + 1,
-                r.unix.rfc3339()
-            ))
-        })?;
+        let s =
+            step(&r.time, &site, &config.settings, &lamp, Some(r.measurement)).map_err(|e| {
+                let what = crate::args::describe(e, str::to_owned, " = ");
+                ParamError(format!(
+                    "--measurements {} data row {} ({}): {what}",
+                    file.display(),
+                    i + 1,
+                    r.unix.rfc3339()
+                ))
+            })?;
         let w = s
             .weather
             .map_or((0, 0.0), |w| (w.sky_type, w.clear_sky_index));
@@ -217,9 +219,9 @@ pub fn schedule(config: &ScheduleConfig, output: &mut dyn Write) -> Result<()> {
         let (hour, min) = (minute / 60, minute % 60);
         let time = UtcTime::new(year, month, day, hour, min, 0.0)
             .map_err(|e| ParamError(format!("--date: {e}")))?;
-        let s = step(&time, &site, config.turbidity, config.full_scale_lux, &lamp, None).with_context(
-            || format!("schedule at {year:04}-{month:02}-{day:02}T{hour:02}:{min:02} (--turbidity, --full-scale-lux)"),
-        )?;
+        let s = step(&time, &site, &config.settings, &lamp, None).with_context(|| {
+            format!("schedule at {year:04}-{month:02}-{day:02}T{hour:02}:{min:02} (--aod, --full-scale-lux)")
+        })?;
         writeln!(
             output,
             "{year:04}-{month:02}-{day:02}T{hour:02}:{min:02}:00Z,{}",

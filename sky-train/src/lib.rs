@@ -11,6 +11,8 @@ pub mod cli;
 pub mod commands;
 pub mod controller;
 pub mod csv_input;
+pub mod daylight_sky;
+pub mod daylight_tables;
 pub mod dispatch;
 pub mod eval;
 pub mod export;

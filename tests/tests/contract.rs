@@ -8,9 +8,9 @@
 use proptest::prelude::*;
 use proptest::test_runner::Config;
 use sky_core::aoas::{AoasSky, Preset, Scattering};
+use sky_core::daylight::Daylight;
 use sky_core::neural::{FixedNeuralSky, FixedNeuralWeights, NeuralSky, NeuralWeights, pretrained};
 use sky_core::sh::ShSky;
-use sky_core::twilight::Daylight;
 use sky_core::{PreethamSky, Sun, Vec3, cct, color};
 
 /// Any f32: every class proptest knows (normal, subnormal, zero, infinite, NaN), both signs.
@@ -88,11 +88,29 @@ proptest! {
                 prop_assert!(out.iter().all(|v| finite(*v)));
                 prop_assert!(sky.zenith().luminance >= 0.0);
             }
-            if let Ok(day) = Daylight::new(sun, t) {
-                prop_assert!(finite(day.rgb(d)));
-                let c = day.xyy(d);
-                prop_assert!(c.luminance.is_finite() && c.luminance >= 0.0, "{c:?}");
+        }
+    }
+
+    #[test]
+    fn daylight_is_finite_and_non_negative(
+        (z, a) in prop_oneof![(any_f32(), any_f32()), (0.0f32..=std::f32::consts::PI, -10.0f32..10.0)],
+        aod in prop_oneof![any_f32(), 0.05f32..=0.8],
+        d in any_dir()
+    ) {
+        if let Ok(sun) = Sun::new(z, a) {
+            if let Ok(day) = Daylight::new(sun, aod) {
+                for v in [day.global(), day.diffuse(), day.direct(), day.direct_normal(), day.tilted(d)] {
+                    prop_assert!(v.is_finite() && v.min_element() >= 0.0, "{v:?}");
+                }
+                prop_assert!(day.melanopic_edi().is_finite() && day.melanopic_edi() > 0.0);
+                prop_assert!(day.melanopic_der().is_finite());
+                let (x, y) = day.chromaticity();
+                prop_assert!(x.is_finite() && y.is_finite());
+                if let Some(c) = day.cct() {
+                    prop_assert!(c.kelvin.is_finite() && c.duv.abs() <= 0.05);
+                }
             }
+            let _ = Daylight::clear(sun).global();
         }
     }
 

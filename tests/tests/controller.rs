@@ -1,7 +1,7 @@
 //! The lighting-controller outputs against independent references: sun position against pvlib's
 //! SPA, CCT/Duv against colour-science's Ohno 2013 (both fixtures written by
 //! `tests/reference/gen_fixtures.py`), illuminance against brute-force f64 integrals, LED drive
-//! levels against a mixture computed here, and the twilight sky over every sun elevation.
+//! levels against a mixture computed here. (The daylight over every sun elevation, finite and monotone: `daylight.rs`.)
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -10,7 +10,6 @@ use sky_core::led::{Channel, Luminaire};
 use sky_core::neural::{NeuralSky, pretrained};
 use sky_core::photometry::Photometry;
 use sky_core::solar::{Site, SunPosition};
-use sky_core::twilight::Daylight;
 use sky_core::{PreethamSky, Sun, Vec3, cct};
 use sky_tests::fixtures::{self, num};
 use sky_tests::reference::preetham as reference;
@@ -232,51 +231,6 @@ fn neural_illuminance_agrees_with_brute_force() {
     }
     println!("neural sky illuminance: max relative error {worst:.2e} (bound 5e-3)");
     assert!(worst < 5e-3);
-}
-
-/// From sun elevation −18° to 90° in 0.1° steps: every output finite, illuminance monotone.
-#[test]
-fn twilight_to_noon_is_finite_and_monotone() {
-    let mut previous = 0.0f32;
-    let mut first = None;
-    for i in -180..=900 {
-        let elevation = i as f32 * 0.1;
-        let sun = Sun::new((90.0 - elevation).to_radians(), 2.0).expect("sun");
-        let sky = Daylight::new(sun, 3.0).expect("any elevation");
-        let e = sky.horizontal_illuminance();
-        let s = e.x + e.y + e.z;
-        let c = cct::cct_duv(e.x / s, e.y / s).expect("a colour temperature");
-        let cone = sky.cone_mean(Vec3::Z, 0.5).expect("cone");
-        let window = sky.plane_illuminance(Vec3::X).expect("plane");
-        let rgb = sky.rgb(Vec3::new(0.3, 0.2, 0.9));
-        let all = [
-            e.x,
-            e.y,
-            e.z,
-            c.kelvin,
-            c.duv,
-            cone.x,
-            cone.y,
-            cone.luminance,
-            window.y,
-            rgb.x,
-            rgb.y,
-            rgb.z,
-            sky.zenith_luminance(),
-        ];
-        assert!(all.iter().all(|v| v.is_finite()), "{elevation}: {all:?}");
-        assert!(
-            e.y > previous,
-            "illuminance not increasing at {elevation} deg: {} <= {previous}",
-            e.y
-        );
-        previous = e.y;
-        first.get_or_insert(e.y);
-    }
-    println!(
-        "horizontal illuminance from {:.2e} lx at -18 deg to {previous:.0} lx at 90 deg, increasing at every 0.1 deg",
-        first.unwrap_or_default()
-    );
 }
 
 /// XYZ of a chromaticity and luminance, in f64 (eq. 27 of seed 002, written again here).

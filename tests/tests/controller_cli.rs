@@ -56,7 +56,21 @@ fn schedule_matches_spa_and_is_consistent() {
                 "horizontal_lux"
             ]
         );
-        assert_eq!(&header[8..], ["red", "green", "blue", "white"]);
+        assert_eq!(
+            &header[8..],
+            [
+                "red",
+                "green",
+                "blue",
+                "white",
+                "global_lux",
+                "diffuse_lux",
+                "direct_lux",
+                "x",
+                "y",
+                "melanopic_edi_lux"
+            ]
+        );
         let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
         assert_eq!(rows.len(), want.len());
         let mut by_elevation = Vec::new();
@@ -65,13 +79,27 @@ fn schedule_matches_spa_and_is_consistent() {
             zenith = zenith.max((num(got[1]) - num(&want[5])).abs());
             let da = (num(got[2]) - num(&want[6]) + 540.0).rem_euclid(360.0) - 180.0;
             azimuth = azimuth.max(da.abs() * num(&want[5]).to_radians().sin());
-            let values: Vec<f64> = got[1..].iter().map(|v| num(v)).collect();
+            // cct_k and duv are empty where |Duv| > 0.05 (nautical twilight and night).
+            let values: Vec<f64> = got[1..]
+                .iter()
+                .map(|v| if v.is_empty() { 0.0 } else { num(v) })
+                .collect();
             assert!(values.iter().all(|v| v.is_finite()), "{got:?}");
             assert!(
-                values[7..].iter().all(|l| (0.0..=1.0).contains(l)),
+                values[7..11].iter().all(|l| (0.0..=1.0).contains(l)),
                 "{got:?}"
             );
-            assert!((1_000.0..=100_000.0).contains(&values[4]), "{got:?}");
+            assert!(
+                got[5].is_empty() || (1_000.0..=100_000.0).contains(&values[4]),
+                "{got:?}"
+            );
+            assert_eq!(got[5].is_empty(), got[6].is_empty(), "{got:?}");
+            // Global = diffuse + direct, and the followed light is the global one.
+            assert!(
+                (values[11] - values[12] - values[13]).abs() <= 1e-5 * values[11],
+                "{got:?}"
+            );
+            assert_eq!(got[7], got[12], "{got:?}");
             // Below -18° the night floor is constant (up to rounding that varies with the
             // sun's azimuth): monotone from -18° up.
             if values[2] >= -18.0 {
@@ -121,7 +149,7 @@ type BadSchedule<'a> = (&'a str, &'a str, &'a str, &'a [&'a str], [&'a str; 2]);
 /// Bad input: one clear error naming the parameter and its valid range.
 #[test]
 fn bad_input_names_the_parameter() {
-    let cases: [BadSchedule; 8] = [
+    let cases: [BadSchedule; 9] = [
         ("95", "0", "2026-01-01", &[], ["--lat", "[-90, 90]"]),
         ("0", "-181", "2026-01-01", &[], ["--lon", "[-180, 180]"]),
         ("0", "0", "2026-13-01", &[], ["--date", "month"]),
@@ -146,7 +174,14 @@ fn bad_input_names_the_parameter() {
             "0",
             "2026-01-01",
             &["--turbidity", "9"],
-            ["--turbidity", "[2, 6]"],
+            ["--turbidity", "[2, 8.5]"],
+        ),
+        (
+            "0",
+            "0",
+            "2026-01-01",
+            &["--aod", "0.9"],
+            ["--aod", "[0.05, 0.8]"],
         ),
     ];
     for (lat, lon, date, extra, needles) in cases {
@@ -177,8 +212,7 @@ fn schedule_refuses_a_zero_step() {
         elevation: 0.0,
         date: (2026, 3, 20),
         step_minutes: 0,
-        turbidity: 3.0,
-        full_scale_lux: 10_000.0,
+        settings: sky_core::controller::Settings::default(),
     };
     let err = sky_train::controller::schedule(&config, &mut Vec::new())
         .expect_err("a zero step must be refused");

@@ -5,12 +5,26 @@
 
 use proptest::prelude::*;
 use sky_core::SkyError;
-use sky_core::controller::{Measurement, Step, clear_sky_illuminance, example_luminaire, step};
+use sky_core::controller::{
+    Measurement, Settings, Step, clear_sky_illuminance, example_luminaire, step,
+};
 use sky_core::led::Luminaire;
 use sky_core::solar::{Site, SunPosition, UtcTime};
 
-const TURBIDITY: f32 = 3.0;
-const FULL_SCALE_LUX: f32 = 10_000.0;
+const AOD: f32 = sky_core::daylight::DEFAULT_AOD;
+
+fn settings() -> Settings {
+    Settings {
+        aerosol_optical_depth: AOD,
+        full_scale_lux: 10_000.0,
+        ..Settings::default()
+    }
+}
+
+/// CCT and Duv of a step, 0 where undefined.
+fn cct(s: &Step) -> (f32, f32) {
+    s.cct.map_or((0.0, 0.0), |c| (c.kelvin, c.duv))
+}
 
 fn vienna() -> Site {
     Site::new(48.21, 16.37, 190.0).expect("site")
@@ -43,7 +57,7 @@ fn cloud_factor(t: f64) -> f64 {
 /// clear-sky value where the factor is 1).
 fn lux_reading(time: &UtcTime, t: f64) -> f32 {
     let sun = SunPosition::new(time, &vienna()).expect("sun");
-    let clear = clear_sky_illuminance(&sun, TURBIDITY).expect("clear").y;
+    let clear = clear_sky_illuminance(&sun, AOD).expect("clear").y;
     let f = cloud_factor(t);
     #[allow(clippy::cast_possible_truncation)]
     if f == 1.0 {
@@ -64,8 +78,7 @@ fn wm2_reading(time: &UtcTime, t: f64) -> f32 {
 }
 
 fn run(time: &UtcTime, m: Option<Measurement>) -> Step {
-    step(time, &vienna(), TURBIDITY, FULL_SCALE_LUX, &lamp(), m)
-        .unwrap_or_else(|e| panic!("{time:?} {m:?}: {e}"))
+    step(time, &vienna(), &settings(), &lamp(), m).unwrap_or_else(|e| panic!("{time:?} {m:?}: {e}"))
 }
 
 /// Every value of a step, for finiteness and differences.
@@ -74,8 +87,8 @@ fn values(s: &Step) -> Vec<f64> {
         f64::from(s.illuminance.x),
         f64::from(s.illuminance.y),
         f64::from(s.illuminance.z),
-        f64::from(s.cct.kelvin),
-        f64::from(s.cct.duv),
+        f64::from(cct(s).0),
+        f64::from(cct(s).1),
     ];
     v.extend(s.drive.levels.iter().map(|&l| f64::from(l)));
     if let Some(w) = &s.weather {
@@ -100,8 +113,8 @@ fn change(a: &Step, b: &Step) -> (f64, f64, f64, f64) {
         .fold(0.0, f64::max);
     (
         f64::from((a.illuminance.y - b.illuminance.y).abs() / a.illuminance.y.max(1e-3)),
-        f64::from((a.cct.kelvin - b.cct.kelvin).abs()),
-        f64::from((a.cct.duv - b.cct.duv).abs()),
+        f64::from((cct(a).0 - cct(b).0).abs()),
+        f64::from((cct(a).1 - cct(b).1).abs()),
         levels,
     )
 }
@@ -263,7 +276,7 @@ fn efficacy_steps_at_bin_edges_are_bounded() {
 fn check_step(minute: u32, lat: f64, lon: f64, m: Measurement) -> Result<(), TestCaseError> {
     let site = Site::new(lat, lon, 0.0).expect("site");
     let time = at(minute % 1440, 0.0);
-    match step(&time, &site, TURBIDITY, FULL_SCALE_LUX, &lamp(), Some(m)) {
+    match step(&time, &site, &settings(), &lamp(), Some(m)) {
         Ok(s) => prop_assert!(values(&s).iter().all(|v| v.is_finite()), "{s:?}"),
         Err(SkyError::NotFinite { parameter } | SkyError::OutOfRange { parameter, .. }) => {
             prop_assert!(
@@ -329,8 +342,7 @@ proptest! {
 fn bad_readings_have_named_errors_or_documented_clamps() {
     let noon = at(11 * 60, 0.0);
     let night = at(23 * 60, 0.0);
-    let err =
-        |time: &UtcTime, m| step(time, &vienna(), TURBIDITY, FULL_SCALE_LUX, &lamp(), Some(m));
+    let err = |time: &UtcTime, m| step(time, &vienna(), &settings(), &lamp(), Some(m));
     // NaN: not finite, named.
     assert!(matches!(
         err(&noon, Measurement::GlobalIlluminance(f32::NAN)),

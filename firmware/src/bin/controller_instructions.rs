@@ -10,8 +10,8 @@
 //! For each of the controller example's 144 steps (`src/bin/controller.rs`, the same site,
 //! date and configuration), this counts `sky_core::controller::step` as a whole and its parts
 //! called one by one as `step` calls them: the sun's position (SPA), the sky's constructor
-//! (`Daylight::new`), the horizontal illuminance (a 256-point quadrature of the sky),
-//! chromaticity and CCT (`cct_duv`) and the LED drive levels; the parts' results must equal
+//! (`daylight::Daylight::new`: the diffuse tables and the direct beam's 47 spectral bins), the
+//! global light (their sum), chromaticity and CCT (`cct_duv`) and the LED drive levels; the parts' results must equal
 //! the whole step's bit for bit. It prints the minimum, median and maximum over the day of
 //! each, in instructions (the bracket's own instructions subtracted).
 
@@ -26,13 +26,12 @@ use cortex_m::peripheral::{SCB, SYST};
 use cortex_m_rt::{entry, exception};
 use cortex_m_semihosting::hprintln;
 use sky_core::color::{self, Xyy};
-use sky_core::controller::{example_luminaire, step};
-use sky_core::photometry::Photometry;
+use sky_core::controller::{Light, Settings, example_luminaire, step};
 use sky_core::solar::{Site, SunPosition, UtcTime};
-use sky_core::twilight::Daylight;
-use sky_core::{SkyError, cct};
+use sky_core::SkyError;
+use sky_core::daylight::{self, Daylight};
 
-// `SITE`, `DATE`, `STEP_MINUTES`, `TURBIDITY`, `FULL_SCALE_LUX` and `PWM_BITS`, from build.rs.
+// `SITE`, `DATE`, `STEP_MINUTES`, `AOD`, `FULL_SCALE_LUX` and `PWM_BITS`, from build.rs.
 include!(concat!(env!("OUT_DIR"), "/controller_config.rs"));
 
 const _: u8 = PWM_BITS; // the PWM levels are the controller example's, not counted here
@@ -114,21 +113,25 @@ fn run(counts: &mut [Counts; 6], per_instruction: f64, empty: u64) -> Result<boo
         clippy::cast_precision_loss
     )]
     let instructions = |t: u64| (t.saturating_sub(empty) as f64 / per_instruction + 0.5) as u32;
+    let settings = Settings {
+        aerosol_optical_depth: AOD,
+        light: Light::Global,
+        full_scale_lux: FULL_SCALE_LUX,
+    };
     let mut same = true;
     for (index, minute) in (0..24 * 60).step_by(STEP_MINUTES as usize).enumerate() {
         let time = UtcTime::new(year, month, day, minute / 60, minute % 60, 0.0)?;
-        let (t_step, whole) = measure(|| step(&time, &site, TURBIDITY, FULL_SCALE_LUX, &lamp, None));
+        let (t_step, whole) = measure(|| step(&time, &site, &settings, &lamp, None));
         let whole = whole?;
         let (t_sun, sun) = measure(|| SunPosition::new(&time, &site));
         let sun = sun?;
-        let (t_sky, sky) = measure(|| Daylight::new(sun.sun(), TURBIDITY));
+        let (t_sky, sky) = measure(|| Daylight::new(sun.sun(), AOD));
         let sky = sky?;
-        let (t_lux, illuminance) = measure(|| sky.horizontal_illuminance());
+        let (t_lux, illuminance) = measure(|| sky.global());
         let (t_cct, (colour, cct)) = measure(|| {
             let colour = color::xyz_to_xyy(illuminance);
-            (colour, cct::cct_duv(colour.x, colour.y))
+            (colour, daylight::cct_of(illuminance))
         });
-        let cct = cct?;
         let (t_drive, drive) = measure(|| {
             lamp.drive(Xyy {
                 luminance: full_output * illuminance.y / FULL_SCALE_LUX,
@@ -136,6 +139,7 @@ fn run(counts: &mut [Counts; 6], per_instruction: f64, empty: u64) -> Result<boo
             })
         });
         same &= whole.sun == sun
+            && whole.daylight == sky
             && whole.illuminance == illuminance
             && whole.cct == cct
             && whole.drive == drive;
@@ -178,8 +182,8 @@ fn main() -> ! {
     let mut counts = [
         part("controller::step"),
         part("  sun position (SPA)"),
-        part("  sky (Daylight::new)"),
-        part("  horizontal illuminance (256 points)"),
+        part("  daylight (Daylight::new)"),
+        part("  global light (Daylight::global)"),
         part("  chromaticity and CCT (cct_duv)"),
         part("  LED drive (Luminaire::drive)"),
     ];

@@ -3,11 +3,10 @@
 //! comparison, today's Preetham sky with sky-core's twilight (sky only, direct 0).
 
 use std::io::{BufWriter, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
-use sky_core::photometry::Photometry;
 
 use super::AtmosphereArgs;
 use crate::args::{ParamError, radians};
@@ -67,35 +66,51 @@ fn physical_rows(args: &DaylightArgs, list: &[f64]) -> Result<Vec<Row>, ParamErr
         .collect()
 }
 
-/// Today's sky-only figures: sky-core's Preetham sky with its twilight blend.
+/// Knots of the previous sky-only model's twilight decay (sun elevation in degrees, log10 of
+/// the luminance factor): the clear-sky horizontal illuminances of the American
+/// Meteorological Society's *Glossary of Meteorology* ("civil twilight", "astronomical
+/// twilight"), each range's geometric mean over 490 lx at sunset.
+const TWILIGHT_KNOTS: [(f64, f64); 4] = [
+    (0.0, 0.0),
+    (-6.0, -2.2676),
+    (-12.0, -4.7871),
+    (-18.0, -5.9120),
+];
+
+/// The previous model's luminance factor: 1 by day, log-linear through the knots, constant
+/// below −18°.
+fn twilight_factor(h: f64) -> f64 {
+    if h >= 0.0 {
+        return 1.0;
+    }
+    let mut log10 = TWILIGHT_KNOTS[3].1;
+    for pair in TWILIGHT_KNOTS.windows(2) {
+        let ((h0, k0), (h1, k1)) = (pair[0], pair[1]);
+        if h < h0 && h >= h1 {
+            log10 = k0 + (k1 - k0) * (h - h0) / (h1 - h0);
+        }
+    }
+    10f64.powf(log10)
+}
+
+/// The previous sky-only figures, for comparison: sky-core's Preetham sky (the sun on the
+/// horizon below it) scaled by the glossary's twilight decay.
 fn preetham_rows(list: &[f64], turbidity: f64) -> Result<Vec<Row>, ParamError> {
+    use sky_core::photometry::Photometry;
     list.iter()
         .map(|&h| {
-            let sun = sky_core::Sun::new(radians(90.0 - h), 0.0)
+            let sun = sky_core::Sun::new(radians(90.0 - h.clamp(0.0, 90.0)), 0.0)
                 .map_err(|e| ParamError(format!("--elevations {h}: {e}")))?;
             #[allow(clippy::cast_possible_truncation)]
-            let e = sky_core::twilight::Daylight::new(sun, turbidity as f32)
-                .map_err(|e| ParamError(format!("--elevations {h}: {e}")))?
+            let e = sky_core::PreethamSky::new(sun, turbidity as f32)
+                .map_err(|e| ParamError(format!("--turbidity {turbidity}: {e}")))?
                 .horizontal_illuminance();
-            let (x, y, z) = (f64::from(e.x), f64::from(e.y), f64::from(e.z));
+            let k = twilight_factor(h);
+            let (x, y, z) = (f64::from(e.x) * k, f64::from(e.y) * k, f64::from(e.z) * k);
             // No spectrum, so no melanopic EDI.
             Ok((h, y, 0.0, Colorimetry::from_channels([x, y, z, f64::NAN])))
         })
         .collect()
-}
-
-fn check_svg(flag: &str, path: &Path) -> Result<(), ParamError> {
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    if path.extension().is_none_or(|e| e != "svg") || !dir.is_dir() {
-        return Err(ParamError(format!(
-            "{flag} {}: expected a .svg file in an existing folder",
-            path.display()
-        )));
-    }
-    Ok(())
 }
 
 fn plots(args: &DaylightArgs, rows: &[Row]) -> Result<()> {
@@ -265,10 +280,10 @@ pub fn run(args: &DaylightArgs, output: &mut dyn Write) -> Result<()> {
     let list = elevation_list(args.elevations);
     let plotting = args.plot_illuminance.is_some() || args.plot_cct.is_some();
     if let Some(p) = &args.plot_illuminance {
-        check_svg("--plot-illuminance", p)?;
+        crate::args::check_output("--plot-illuminance", p, "svg")?;
     }
     if let Some(p) = &args.plot_cct {
-        check_svg("--plot-cct", p)?;
+        crate::args::check_output("--plot-cct", p, "svg")?;
     }
     let rows = match args.model {
         ModelKind::Physical => physical_rows(args, &list)?,

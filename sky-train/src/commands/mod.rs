@@ -8,6 +8,8 @@ pub mod captures;
 pub mod cct;
 pub mod daylight;
 pub mod daylight_plot;
+pub mod daylight_sky;
+pub mod daylight_tables;
 pub mod eval;
 pub mod export;
 pub mod fit_sh;

@@ -7,6 +7,8 @@ use anyhow::Result;
 use clap::Args;
 
 use crate::args::{date, elevation, in_range, latitude, longitude};
+use sky_core::controller::{Light, Settings};
+
 use crate::controller::{ScheduleConfig, read_measurements, schedule, schedule_measured};
 
 /// `schedule`'s arguments.
@@ -25,8 +27,7 @@ pub struct ScheduleArgs {
     /// header names `utc` (RFC 3339) and `global_lux` (a lux sensor) or `ghi_wm2` with optional
     /// `dhi_wm2` (pyranometers). One output row per reading, with two more columns: sky_type
     /// (the Perez sky-clearness bin, 1 overcast to 8 clear; 0 with the sun below the horizon)
-    /// and clear_sky_index (the reading over the clear sky's horizontal illuminance, which is
-    /// the sky alone, without the direct sun, until sky-core has a daylight model with the sun).
+    /// and clear_sky_index (the reading over the clear sky's global horizontal illuminance).
     #[arg(long, value_name = "FILE.csv")]
     pub measurements: Option<PathBuf>,
     /// Minutes between rows, from 00:00 UTC (1 to 1440; not with --measurements).
@@ -35,17 +36,35 @@ pub struct ScheduleArgs {
     /// Elevation of the site in metres above sea level (-500 to 10000).
     #[arg(long, value_name = "M", default_value_t = 0.0, allow_negative_numbers = true, value_parser = elevation)]
     pub elevation: f64,
-    /// Atmospheric turbidity of the clear sky (2 to 6).
-    #[arg(long, value_name = "T", default_value_t = 3.0, value_parser = turbidity)]
-    pub turbidity: f32,
+    /// Aerosol optical depth at 550 nm of the clear atmosphere (0.05 to 0.8; default the
+    /// clear-sky record's, sky-core's `daylight::DEFAULT_AOD`).
+    #[arg(long, value_name = "TAU", value_parser = aod, conflicts_with = "turbidity")]
+    pub aod: Option<f32>,
+    /// Preetham's turbidity instead of --aod (2 to 8.5), mapped to the aerosol optical depth as
+    /// the physical atmosphere maps it (`Atmosphere::from_turbidity`).
+    #[arg(long, value_name = "T", value_parser = turbidity)]
+    pub turbidity: Option<f32>,
+    /// Follow the sky alone (the diffuse light: a north-facing window or a skylight) instead
+    /// of the global light of sun and sky.
+    #[arg(long)]
+    pub sky_only: bool,
     /// Horizontal illuminance in lux at which the luminaire gives its full output (1 to 200000).
     #[arg(long, value_name = "LUX", default_value_t = 10_000.0, value_parser = full_scale_lux)]
     pub full_scale_lux: f32,
 }
 
 #[allow(clippy::cast_possible_truncation)]
+fn aod(s: &str) -> Result<f32, String> {
+    // sky-core's daylight::MIN_AOD and MAX_AOD, as decimals (Daylight::new checks them again).
+    in_range(s, 0.05, 0.8, "an aerosol optical depth").map(|v| v as f32)
+}
+
+/// Preetham's turbidity, mapped to the aerosol optical depth (2 to 8.5: 0.100 to 0.75).
+#[allow(clippy::cast_possible_truncation)]
 fn turbidity(s: &str) -> Result<f32, String> {
-    in_range(s, 2.0, 6.0, "a turbidity").map(|v| v as f32)
+    let t = in_range(s, 2.0, 8.5, "a turbidity")?;
+    let atm = crate::physical::Atmosphere::from_turbidity(t).map_err(|e| e.to_string())?;
+    Ok(atm.aod_550 as f32)
 }
 
 #[allow(clippy::cast_possible_truncation)]
@@ -66,8 +85,18 @@ pub fn run(args: &ScheduleArgs, output: &mut dyn Write) -> Result<()> {
         // Unused with --measurements (their rows carry the dates).
         date: args.date.unwrap_or((2000, 1, 1)),
         step_minutes: args.step,
-        turbidity: args.turbidity,
-        full_scale_lux: args.full_scale_lux,
+        settings: Settings {
+            aerosol_optical_depth: args
+                .aod
+                .or(args.turbidity)
+                .unwrap_or(sky_core::daylight::DEFAULT_AOD),
+            light: if args.sky_only {
+                Light::Sky
+            } else {
+                Light::Global
+            },
+            full_scale_lux: args.full_scale_lux,
+        },
     };
     let mut out = BufWriter::new(output);
     match &args.measurements {

@@ -1,0 +1,64 @@
+//! `sky-train daylight-tables`: sky-core's daylight tables from the physical atmosphere
+//! ([`crate::daylight_tables`]): `--sample` reruns the slow step (the reference at every
+//! optical depth and sun-angle node, into `--data`), then the tables are written from `--data`.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use anyhow::Result;
+use clap::Args;
+
+use crate::args::{ParamError, check_output};
+use crate::daylight_tables as tables;
+use crate::image_io::write_atomically;
+use crate::physical::cache;
+
+/// `daylight-tables`' arguments.
+#[derive(Args)]
+pub struct DaylightTablesArgs {
+    /// Sample the physical atmosphere into --data first (one precomputed atmosphere per
+    /// optical depth 0.05, 0.1, 0.2, 0.4, 0.8; about a minute each on first use, then cached).
+    #[arg(long)]
+    sample: bool,
+    /// The sampled reference (CSV): written by --sample, read to make the tables.
+    #[arg(long, value_name = "FILE.csv", default_value = tables::DATA_PATH)]
+    data: PathBuf,
+    /// The Rust file to write (sky-core's `daylight/tables.rs`).
+    #[arg(long, value_name = "FILE.rs", default_value = tables::TABLES_PATH)]
+    out: PathBuf,
+    /// Folder of precomputed atmospheres (default $SKY_TRAIN_CACHE_DIR, else
+    /// $XDG_CACHE_HOME/sky-train, else ~/.cache/sky-train).
+    #[arg(long, value_name = "DIR")]
+    cache_dir: Option<PathBuf>,
+}
+
+/// Samples (with `--sample`) and writes the tables, reporting on `output`.
+///
+/// # Errors
+/// Bad paths as a [`ParamError`]; a data file that is not the sampled grid; a failed write.
+pub fn run(args: &DaylightTablesArgs, output: &mut dyn Write) -> Result<()> {
+    check_output("--data", &args.data, "csv")?;
+    check_output("--out", &args.out, "rs")?;
+    if args.sample {
+        let dir = args.cache_dir.clone().unwrap_or_else(cache::default_dir);
+        std::fs::create_dir_all(&dir).map_err(|e| {
+            ParamError(format!(
+                "--cache-dir {}: cannot create the folder ({e})",
+                dir.display()
+            ))
+        })?;
+        let samples = tables::sample(&dir, true)?;
+        tables::write_samples(&args.data, &samples)?;
+        writeln!(
+            output,
+            "wrote {} ({} samples)",
+            args.data.display(),
+            samples.len()
+        )?;
+    }
+    let samples = tables::read_samples(&args.data)?;
+    let source = tables::rust_source(&samples, &tables::beam());
+    write_atomically(&args.out, |f| Ok(f.write_all(source.as_bytes())?))?;
+    writeln!(output, "wrote {}", args.out.display())?;
+    Ok(())
+}

@@ -1,0 +1,177 @@
+//! sky-core's daylight (`sky_core::daylight`) against sky-train's physical atmosphere at sun
+//! elevations and aerosol optical depths between the tables' nodes (none of them sampled to make
+//! the tables), the regeneration of its tables, and its monotonicity. Nothing here trains or
+//! fits anything: the tables are the checked-in ones.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use sky_core::Sun;
+use sky_core::daylight::{self, Daylight};
+use sky_train::daylight_tables as tables;
+use sky_train::physical::{PhysicalAtmosphere, Resolution, cache};
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("workspace root")
+        .to_path_buf()
+}
+
+fn build(aod: f64) -> Arc<PhysicalAtmosphere> {
+    cache::load_or_build(
+        &tables::atmosphere(aod),
+        &Resolution::default(),
+        Some(Path::new(env!("CARGO_TARGET_TMPDIR"))),
+        false,
+    )
+    .expect("atmosphere")
+}
+
+/// The held-out optical depths: between the nodes 0.1-0.2, 0.2-0.4 and 0.4-0.8 (geometric
+/// midpoints 0.141, 0.283 and 0.566; 0.15 is also the clean-air preset).
+const HELD_OUT_AOD: [f64; 3] = [0.15, 0.3, 0.6];
+
+/// Sun elevations from −12° to 90° that avoid every table node by at least 0.1°.
+fn held_out_elevations() -> Vec<f64> {
+    let nodes = tables::elevation_nodes();
+    (0..=1020)
+        .map(|i| -12.0 + 0.1 * f64::from(i) + 0.03)
+        .filter(|h| *h <= 90.0 && nodes.iter().all(|n| (n - h).abs() >= 0.1))
+        .step_by(3)
+        .collect()
+}
+
+fn sun(h: f64) -> Sun {
+    #[allow(clippy::cast_possible_truncation)]
+    Sun::new((90.0 - h).to_radians() as f32, 0.0).expect("sun")
+}
+
+#[allow(clippy::cast_possible_truncation)]
+fn model(h: f64, aod: f64) -> Daylight {
+    Daylight::new(sun(h), aod as f32).expect("aod in range")
+}
+
+/// The regeneration test: the tables rewritten from the checked-in sample of the reference
+/// (and the reference's constituents) are the checked-in tables.
+#[test]
+fn tables_regenerate() {
+    let samples = tables::read_samples(&root().join(tables::DATA_PATH)).expect("sample file");
+    let fresh = tables::rust_source(&samples, &tables::beam());
+    let checked_in =
+        std::fs::read_to_string(root().join(tables::TABLES_PATH)).expect("sky-core tables");
+    assert!(
+        fresh == checked_in,
+        "{} is stale: run `{}`",
+        tables::TABLES_PATH,
+        tables::COMMAND
+    );
+}
+
+/// The worst relative error of `model` against `reference` over the rows where the reference
+/// is above `floor`, and where.
+fn worst(rows: &[(f64, f64, f64)], floor: f64) -> (f64, f64) {
+    rows.iter()
+        .filter(|r| r.2 > floor)
+        .map(|&(h, m, r)| ((m / r - 1.0).abs(), h))
+        .fold((0.0, f64::NAN), |a, b| if b.0 > a.0 { b } else { a })
+}
+
+#[test]
+fn accuracy_against_the_reference_between_the_nodes() {
+    let elevations = held_out_elevations();
+    for aod in HELD_OUT_AOD {
+        let atm = build(aod);
+        // (h, model, reference) per quantity.
+        let mut rows: [Vec<(f64, f64, f64)>; 4] = Default::default();
+        let mut worst_xy = (0.0f64, f64::NAN);
+        for &h in &elevations {
+            let d = atm.sky(90.0 - h, 0.0).expect("sun").daylight();
+            let m = model(h, aod);
+            for (k, (mv, rv)) in [
+                (m.global().y, d.global.xyz[1]),
+                (m.diffuse().y, d.diffuse.xyz[1]),
+                (m.direct().y, d.direct.xyz[1]),
+                (m.melanopic_edi(), d.global.melanopic_edi),
+            ]
+            .into_iter()
+            .enumerate()
+            {
+                rows[k].push((h, f64::from(mv), rv));
+            }
+            if d.direct.xyz[1] == 0.0 {
+                assert_eq!(m.direct().y, 0.0, "direct light at {h} deg");
+            }
+            let (x, y) = m.chromaticity();
+            let e = (f64::from(x) - d.global.xy.0)
+                .abs()
+                .max((f64::from(y) - d.global.xy.1).abs());
+            if e > worst_xy.0 {
+                worst_xy = (e, h);
+            }
+        }
+        for (k, name) in ["global", "diffuse", "direct", "melanopic EDI"]
+            .iter()
+            .enumerate()
+        {
+            let (day, twilight): (Vec<_>, Vec<_>) = rows[k].iter().partition(|r| r.0 >= 0.0);
+            let (e_day, h_day) = worst(&day, 0.0);
+            let (e_tw, h_tw) = worst(&twilight, 0.0);
+            println!(
+                "aod {aod}: {name}: worst {:.3} % at {h_day:.2} deg (0-90), {:.3} % at {h_tw:.2} deg (-12-0)",
+                100.0 * e_day,
+                100.0 * e_tw
+            );
+            let day_bound = 0.02;
+            let twilight_bound = if k == 3 { 0.02 } else { 0.05 };
+            assert!(
+                e_day <= day_bound,
+                "aod {aod}: {name} {e_day} at {h_day} deg"
+            );
+            assert!(
+                e_tw <= twilight_bound,
+                "aod {aod}: {name} {e_tw} at {h_tw} deg"
+            );
+        }
+        println!(
+            "aod {aod}: chromaticity worst {:.5} at {:.2} deg",
+            worst_xy.0, worst_xy.1
+        );
+        assert!(worst_xy.0 <= 0.002, "aod {aod}: chromaticity {worst_xy:?}");
+    }
+}
+
+/// Global and diffuse illuminance never fall as the sun rises from −18° to 90° (every 0.1°),
+/// at every tabulated and held-out optical depth, and every output is finite.
+#[test]
+fn monotone_in_elevation_and_finite() {
+    for aod in [0.05f32, 0.07, 0.15, 0.3, 0.4, 0.8] {
+        let mut previous = (0.0f32, 0.0f32);
+        for i in 0..=1080 {
+            let h = -18.0 + 0.1 * f64::from(i);
+            let d = Daylight::new(sun(h), aod).expect("aod");
+            let (g, s) = (d.global().y, d.diffuse().y);
+            for v in [
+                d.global(),
+                d.diffuse(),
+                d.direct(),
+                d.direct_normal(),
+                d.tilted(sky_core::Vec3::X),
+            ] {
+                assert!(v.is_finite(), "{h} {aod}");
+            }
+            assert!(d.melanopic_edi().is_finite() && d.melanopic_der().is_finite());
+            assert!(g > 0.0 && g >= previous.0, "global at {h} deg, aod {aod}");
+            assert!(s >= previous.1, "diffuse at {h} deg, aod {aod}");
+            previous = (g, s);
+        }
+    }
+    // Night holds the end of astronomical twilight.
+    let night = Daylight::new(sun(-40.0), 0.2).expect("aod");
+    assert_eq!(
+        night.global(),
+        Daylight::new(sun(-18.0), 0.2).expect("aod").global()
+    );
+    assert!(Daylight::new(sun(10.0), daylight::MAX_AOD * 1.01).is_err());
+    assert!(Daylight::new(sun(10.0), f32::NAN).is_err());
+}
