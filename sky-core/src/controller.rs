@@ -109,6 +109,12 @@ pub struct Step {
     /// clear sky's global or diffuse light ([`Light`]) without a measurement; with one, the
     /// measured global (or diffuse) illuminance with the colour of that light under cloud.
     pub illuminance: Vec3,
+    /// The melanopic EDI of that light, lux (CIE S 026:2018, D65-equivalent): the clear sky's
+    /// global or diffuse light's without a measurement; with one, the mixture of
+    /// [`overcast::daylight_under_cloud`] taken through melanopic content too: the measured
+    /// illuminance times (1 − w) DER_clear + w DER_D65, with w the overcast fraction and
+    /// DER_D65 = 1 (S 026 defines melanopic EDI against D65).
+    pub melanopic_edi: f32,
     /// CCT and Duv of that illuminance's chromaticity; `None` where |Duv| >
     /// [`daylight::MAX_DUV`] (the night-blue sky of nautical twilight).
     pub cct: Option<Cct>,
@@ -185,12 +191,12 @@ pub fn step(
     let sun = SunPosition::new(time, site)?;
     let daylight = Daylight::new(sun.sun(), settings.aerosol_optical_depth)?;
     let clear = daylight.global();
-    let followed = match settings.light {
-        Light::Global => clear,
-        Light::Sky => daylight.diffuse(),
+    let (followed, followed_melanopic) = match settings.light {
+        Light::Global => (clear, daylight.melanopic_edi()),
+        Light::Sky => (daylight.diffuse(), daylight.diffuse_melanopic_edi()),
     };
-    let (illuminance, weather) = match measurement {
-        None => (followed, None),
+    let (illuminance, melanopic_edi, weather) = match measurement {
+        None => (followed, followed_melanopic, None),
         Some(m) => {
             let reading = m.read(sun.sun().zenith(), time.day_of_year())?;
             // The clear sky is positive at every elevation (the night holds -18 deg's light).
@@ -208,8 +214,16 @@ pub fn step(
                 Light::Global => reading.global_illuminance,
                 Light::Sky => reading.diffuse_illuminance(sun.sun().zenith()),
             };
+            // Melanopic EDI is linear in the spectrum, so the mixture at equal luminance mixes
+            // the efficacy ratios; the overcast end is D65, whose ratio is 1 by definition.
+            let clear_part = if followed.y > 0.0 {
+                followed_melanopic * (measured / followed.y)
+            } else {
+                measured
+            };
             (
                 overcast::daylight_under_cloud(followed, w, measured),
+                ((1.0 - w) * clear_part + w * measured).min(f32::MAX),
                 Some(weather),
             )
         }
@@ -224,6 +238,7 @@ pub fn step(
         sun,
         daylight,
         illuminance,
+        melanopic_edi,
         cct: daylight::cct_of(illuminance),
         drive,
         weather,

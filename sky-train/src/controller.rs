@@ -35,10 +35,9 @@ pub struct ScheduleConfig {
 
 /// The CSV header of `schedule`.
 ///
-/// `horizontal_lux`, `x`, `y`, `cct_k` and `duv` are of the light followed (global, or the sky
-/// alone; under cloud with measurements), `cct_k` and `duv` empty where |Duv| > 0.05;
-/// `global_lux`, `diffuse_lux`, `direct_lux` and `melanopic_edi_lux` (of the global light) are
-/// the clear-sky daylight's.
+/// `horizontal_lux`, `x`, `y`, `cct_k`, `duv` and `melanopic_edi_lux` are of the light followed
+/// (global, or the sky alone; under cloud with measurements), `cct_k` and `duv` empty where
+/// |Duv| > 0.05; `global_lux`, `diffuse_lux` and `direct_lux` are the clear-sky daylight's.
 pub const SCHEDULE_HEADER: &str = "utc,sun_zenith_deg,sun_azimuth_deg,sun_elevation_deg,apparent_zenith_deg,cct_k,duv,horizontal_lux,red,green,blue,white,global_lux,diffuse_lux,direct_lux,x,y,melanopic_edi_lux";
 
 /// The columns `schedule --measurements` adds to [`SCHEDULE_HEADER`].
@@ -146,7 +145,7 @@ fn row_fields(s: &Step) -> String {
         d.global().y,
         d.diffuse().y,
         d.direct().y,
-        d.melanopic_edi(),
+        s.melanopic_edi,
     )
 }
 

@@ -89,6 +89,7 @@ fn values(s: &Step) -> Vec<f64> {
         f64::from(s.illuminance.z),
         f64::from(cct(s).0),
         f64::from(cct(s).1),
+        f64::from(s.melanopic_edi),
     ];
     v.extend(s.drive.levels.iter().map(|&l| f64::from(l)));
     if let Some(w) = &s.weather {
@@ -167,6 +168,7 @@ fn a_day_of_lux_readings_is_continuous_and_clear_when_the_sky_is() {
             assert_eq!(measured.illuminance, clear.illuminance, "{m}");
             assert_eq!(measured.cct, clear.cct, "{m}");
             assert_eq!(measured.drive, clear.drive, "{m}");
+            assert_eq!(measured.melanopic_edi, clear.melanopic_edi, "{m}");
             let w = measured.weather.expect("weather");
             assert!(
                 w.clear_sky_index == 1.0 && w.overcast_fraction == 0.0,
@@ -387,4 +389,34 @@ fn bad_readings_have_named_errors_or_documented_clamps() {
     assert_eq!(s.illuminance.y, 5.0);
     assert_eq!(s.weather.expect("weather").sky_type, 0);
     assert!(values(&s).iter().all(|v| v.is_finite()));
+}
+
+/// The melanopic EDI under cloud: the clear light's at the clear-sky level, D65's efficacy ratio
+/// (1, CIE S 026's definition) when fully overcast, and between the two in proportion to the
+/// overcast fraction, mixing the clear light's ratio (from sky-core's daylight tables) and 1.
+#[test]
+fn melanopic_edi_under_cloud_mixes_the_clear_light_and_d65() {
+    let time = at(11 * 60, 0.0);
+    let clear = run(&time, None);
+    let der_clear = f64::from(clear.daylight.melanopic_der());
+    assert!(
+        (f64::from(clear.melanopic_edi) / f64::from(clear.illuminance.y) - der_clear).abs() < 1e-6
+    );
+    for k in [1.0f64, 0.9, 0.65, 0.4, 0.3, 0.1] {
+        #[allow(clippy::cast_possible_truncation)]
+        let reading = (f64::from(clear.illuminance.y) * k) as f32;
+        let s = run(&time, Some(Measurement::GlobalIlluminance(reading)));
+        let w = f64::from(s.weather.expect("weather").overcast_fraction);
+        let expected = f64::from(reading) * ((1.0 - w) * der_clear + w);
+        let e = (f64::from(s.melanopic_edi) - expected).abs() / expected;
+        println!(
+            "k_c {k}: overcast fraction {w:.3}, melanopic DER {:.4}",
+            f64::from(s.melanopic_edi) / f64::from(reading)
+        );
+        assert!(
+            e < 1e-5,
+            "k_c {k}: {} against {expected} ({e:.1e})",
+            s.melanopic_edi
+        );
+    }
 }

@@ -163,6 +163,12 @@ impl Daylight {
         self.diffuse[3] + self.direct_normal[3] * self.sin_elevation
     }
 
+    /// The melanopic EDI of the diffuse (sky) horizontal light, lux (CIE S 026:2018).
+    #[must_use]
+    pub fn diffuse_melanopic_edi(&self) -> f32 {
+        self.diffuse[3]
+    }
+
     /// The melanopic daylight efficacy ratio of the global horizontal light (melanopic EDI over
     /// illuminance; 1 for D65); 0 where there is no light.
     #[must_use]
