@@ -9,9 +9,8 @@ use clap::{Parser, Subcommand};
 
 use crate::commands::{
     self, SkyArgs, bench::BenchArgs, daylight::DaylightArgs, eval::EvalArgs, export::ExportArgs,
-    fit_sh::FitShArgs, fuzz_weights::FuzzArgs, gallery::GalleryArgs, render::RenderArgs,
-    schedule::ScheduleArgs, showcase::ShowcaseArgs, size_study::SizeStudyArgs,
-    spectrum::SpectrumArgs, train::TrainArgs,
+    fit_sh::FitShArgs, gallery::GalleryArgs, render::RenderArgs, schedule::ScheduleArgs,
+    showcase::ShowcaseArgs, size_study::SizeStudyArgs, spectrum::SpectrumArgs, train::TrainArgs,
 };
 
 /// The `sky-train` command line.
@@ -57,8 +56,6 @@ pub enum Command {
     /// same way: mean NRMSE and irradiance on the paper's protocol, bytes, ns/direction (a
     /// Markdown table on stdout).
     SizeStudy(SizeStudyArgs),
-    /// Fuzz sky-core's weight-file decoder with mutated files for a bounded time.
-    FuzzWeights(FuzzArgs),
     /// Fit a model's spherical-harmonics coefficients as polynomials in sun zenith and
     /// turbidity (seed 001) and write them as a Rust table for sky-core.
     FitSh(FitShArgs),
@@ -117,7 +114,6 @@ pub fn execute(command: Command, input: &mut dyn BufRead, output: &mut dyn Write
         Command::Eval(args) => commands::eval::run(&args, output),
         Command::Export(args) => commands::export::run(&args, output),
         Command::SizeStudy(args) => commands::size_study::run(&args, output),
-        Command::FuzzWeights(args) => commands::fuzz_weights::run(&args, output),
         Command::FitSh(args) => commands::fit_sh::run(&args, output),
         Command::Schedule(args) => commands::schedule::run(&args, output),
         Command::Captures { command } => commands::captures::run(&command, output),

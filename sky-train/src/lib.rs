@@ -14,7 +14,6 @@ pub mod csv_input;
 pub mod dispatch;
 pub mod eval;
 pub mod export;
-pub mod fuzz;
 pub mod image_io;
 pub mod physical;
 pub mod plot;

@@ -11,7 +11,6 @@ pub mod daylight_plot;
 pub mod eval;
 pub mod export;
 pub mod fit_sh;
-pub mod fuzz_weights;
 pub mod gallery;
 pub mod render;
 pub mod sample;
