@@ -15,6 +15,7 @@ pub mod dispatch;
 pub mod eval;
 pub mod export;
 pub mod image_io;
+pub mod output_path;
 pub mod physical;
 pub mod plot;
 pub mod reference;

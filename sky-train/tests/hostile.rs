@@ -565,3 +565,144 @@ fn training_budgets_are_kept() {
     );
     assert_eq!(code, 2);
 }
+
+/// Case 6: every output path and option is checked before the work starts: a `--out` in a
+/// folder that does not exist or under a plain file, a file name of the wrong type, or a
+/// `--hidden` layout the weight file cannot hold is refused with exit status 2 before any
+/// sampling, training, fitting or precomputation (before, `train --out /nonexistent/x.skyn`
+/// trained its whole budget and then failed with status 1). That the work did not start shows
+/// in what it would have left: no checkpoint, no cache folder, no output folder.
+#[test]
+fn outputs_are_checked_before_the_work_starts() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let t = path(dir.path());
+    std::fs::write(dir.path().join("plain"), "not a folder").expect("file");
+    synthesize(&dir.path().join("caps"), 64, 4);
+    let w = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../sky-core/weights/preetham.skyn"
+    );
+    // Training that leaves a checkpoint after its first iteration.
+    let train = format!("train --checkpoint {t}/ck --max-iterations 1");
+    let captures = format!("--input {t}/caps");
+    let physical = format!("--model physical --sun-zenith 30 --cache-dir {t}/cache");
+    let daylight = "daylight --elevations 0:10:5";
+    // Each command line (paths without spaces) and what its one error line names.
+    let cases = [
+        (
+            format!("{train} --out {t}/missing/x.skyn"),
+            "--out|does not exist",
+        ),
+        (
+            format!("{train} --out {t}/plain/x"),
+            "--out|is not a folder",
+        ),
+        (format!("{train} --out {t}"), "--out|is a folder"),
+        (
+            format!("{train} --hidden 6 --out {t}/f.skyn"),
+            "--hidden 6|--out",
+        ),
+        (
+            format!("{train} --hidden 6 --init-weights {w}"),
+            "--hidden 6|--init-weights",
+        ),
+        (
+            format!("train --checkpoint {t}/plain/x"),
+            "--checkpoint|is not a folder",
+        ),
+        (
+            format!("captures train {captures} --max-iterations 1 --out {t}/missing/x"),
+            "--out|does not exist",
+        ),
+        (
+            format!("captures train --input {t}/missing"),
+            "--input|not a folder",
+        ),
+        (
+            format!("captures interpolate --weights {w} {captures} --out {t}/plain/x"),
+            "--out|is not a folder",
+        ),
+        (
+            format!("captures interpolate --weights {w} {captures} --out {t}/i --width 17"),
+            "--width 17",
+        ),
+        (
+            format!("captures strip --weights {w} {captures} --out {t}/s.jpg"),
+            "--out|.png",
+        ),
+        (
+            format!("captures synthesize --width 16 --out {t}/plain/x"),
+            "--out|is not a folder",
+        ),
+        (format!("render {physical} --out {t}/r.jpg"), "--out|.png"),
+        (
+            format!("render {physical} --out {t}/missing/x.exr"),
+            "--out|does not exist",
+        ),
+        (
+            format!("sample --model physical --sun-zenith 30 --cache-dir {t}/plain/x"),
+            "--cache-dir|is not a folder",
+        ),
+        (
+            format!("fit-sh --model preetham --out {t}/plain/x.rs"),
+            "--out|is not a folder",
+        ),
+        (
+            format!("fit-sh --model preetham --out {t}/t.rs --report {t}/plain/x"),
+            "--report|is not a folder",
+        ),
+        (
+            format!("export --format glsl --out {t}/missing/x.glsl"),
+            "--out|does not exist",
+        ),
+        (
+            format!("gallery --out {t}/plain/x"),
+            "--out|is not a folder",
+        ),
+        (
+            format!("showcase --out {t}/plain/x"),
+            "--out|is not a folder",
+        ),
+        (
+            format!("eval --model neural-preetham --out {t}/plain/x"),
+            "--out|is not a folder",
+        ),
+        (
+            format!("{daylight} --plot-cct {t}/missing/x.svg"),
+            "--plot-cct|does not exist",
+        ),
+        (
+            format!("{daylight} --plot-illuminance {t}/a.png"),
+            "--plot-illuminance|.svg",
+        ),
+    ];
+    // Every case is run, and every one that is not refused at once is reported.
+    let mut wrong = Vec::new();
+    for (line, needles) in &cases {
+        let args: Vec<&str> = line.split(' ').collect();
+        let out = sky_train(&args, "");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        let refused = out.status.code() == Some(2)
+            && stderr.trim_end().lines().count() == 1
+            && needles.split('|').all(|n| stderr.contains(n));
+        if !refused {
+            wrong.push(format!(
+                "{args:?}: {:?} `{}`",
+                out.status,
+                stderr.trim_end()
+            ));
+        }
+        for left in ["ck", "cache", "missing", "i", "f.skyn"] {
+            if dir.path().join(left).exists() {
+                wrong.push(format!("{args:?}: the work started (left {left})"));
+                let p = dir.path().join(left);
+                let _ = std::fs::remove_dir_all(&p).or_else(|_| std::fs::remove_file(&p));
+            }
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "not refused at once:\n{}",
+        wrong.join("\n")
+    );
+}

@@ -3,7 +3,7 @@
 //! comparison, today's Preetham sky with sky-core's twilight (sky only, direct 0).
 
 use std::io::{BufWriter, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
@@ -11,6 +11,7 @@ use sky_core::photometry::Photometry;
 
 use super::AtmosphereArgs;
 use crate::args::{ParamError, radians};
+use crate::output_path;
 use crate::physical::photometry::Colorimetry;
 use crate::physical::solar;
 use crate::sources::ModelKind;
@@ -82,20 +83,6 @@ fn preetham_rows(list: &[f64], turbidity: f64) -> Result<Vec<Row>, ParamError> {
             Ok((h, y, 0.0, Colorimetry::from_channels([x, y, z, f64::NAN])))
         })
         .collect()
-}
-
-fn check_svg(flag: &str, path: &Path) -> Result<(), ParamError> {
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    if path.extension().is_none_or(|e| e != "svg") || !dir.is_dir() {
-        return Err(ParamError(format!(
-            "{flag} {}: expected a .svg file in an existing folder",
-            path.display()
-        )));
-    }
-    Ok(())
 }
 
 fn plots(args: &DaylightArgs, rows: &[Row]) -> Result<()> {
@@ -265,10 +252,10 @@ pub fn run(args: &DaylightArgs, output: &mut dyn Write) -> Result<()> {
     let list = elevation_list(args.elevations);
     let plotting = args.plot_illuminance.is_some() || args.plot_cct.is_some();
     if let Some(p) = &args.plot_illuminance {
-        check_svg("--plot-illuminance", p)?;
+        output_path::file_ending("--plot-illuminance", p, &["svg"])?;
     }
     if let Some(p) = &args.plot_cct {
-        check_svg("--plot-cct", p)?;
+        output_path::file_ending("--plot-cct", p, &["svg"])?;
     }
     let rows = match args.model {
         ModelKind::Physical => physical_rows(args, &list)?,
