@@ -244,8 +244,9 @@ pub fn cct_lines(input: &mut dyn BufRead, output: &mut dyn Write) -> Result<()> 
         let [x, y] = row.values.map(|v| v as f32);
         let c = cct::cct_duv(x, y).map_err(|e| {
             ParamError(format!(
-                "stdin line {}: {e} (x in [0, 1], y in (0, 1], CCT {}-{} K)",
+                "stdin line {}: {} (x in [0, 1], y in (0, 1], CCT between {} and {} K)",
                 row.line,
+                crate::args::describe(e, str::to_owned, " = "),
                 cct::MIN_CCT,
                 cct::MAX_CCT
             ))

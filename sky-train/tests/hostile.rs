@@ -706,3 +706,187 @@ fn outputs_are_checked_before_the_work_starts() {
         wrong.join("\n")
     );
 }
+
+/// Case 9: errors that say what was checked, and exit statuses that say whose fault it was:
+/// 2 for every bad argument or bad input file, 1 only when the work itself fails (here: stdout
+/// is a full disk). `--model neural` names its weight file's own sun-zenith domain (20-60 deg
+/// here; [0, 180] before), an end a refused value sits on is printed open, a bound of "above 0"
+/// is not printed as 1.1754944e-38, no message mixes degrees and radians, and `train --model
+/// sh` trains with its defaults (it failed on its own default turbidities).
+#[test]
+fn errors_name_what_was_checked_and_exit_statuses_say_whose_fault() {
+    use sky_core::neural::NeuralWeights;
+    let dir = tempfile::tempdir().expect("temp dir");
+    let t = path(dir.path());
+    let shipped = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../sky-core/weights/preetham.skyn"
+    );
+    let mut narrow =
+        NeuralWeights::<12>::decode(&std::fs::read(shipped).expect("weights")).expect("decodes");
+    narrow.sun_zenith_range = (20f32.to_radians(), 60f32.to_radians());
+    let bytes = sky_train::export::encode(&narrow).expect("encodes");
+    std::fs::write(dir.path().join("narrow.skyn"), bytes).expect("written");
+    std::fs::write(dir.path().join("garbage"), "garbage").expect("written");
+    std::fs::create_dir(dir.path().join("caps")).expect("folder");
+    std::fs::write(dir.path().join("caps/captures.toml"), "not toml [[[").expect("written");
+    std::fs::write(dir.path().join("m.csv"), "utc,global_lux\nnope,5\n").expect("written");
+    let g = format!("{t}/garbage");
+    let schedule = "schedule --lat 48 --lon 16";
+    // Command line, stdin, exit status, what the one error line names.
+    let cases = [
+        // Bad arguments.
+        (
+            format!("sample --model neural --weights {t}/narrow.skyn --sun-zenith 70"),
+            "",
+            2,
+            "--sun-zenith 70 deg|[20, 60] deg",
+        ),
+        (
+            "sample --sun-zenith 30 --turbidity 7".into(),
+            "",
+            2,
+            "--turbidity 7|[2, 6]",
+        ),
+        ("render --width 0 --out x.png".into(), "", 2, "--width"),
+        ("size-study --model cie".into(), "", 2, "--model cie"),
+        (
+            "spectrum --sun-zenith 120".into(),
+            "",
+            2,
+            "--sun-zenith 120 deg|[0, 108] deg",
+        ),
+        ("eval --model neural".into(), "", 2, "--weights"),
+        ("fit-sh --model sh".into(), "", 2, "--model sh"),
+        (
+            "fit-sh --model preetham --turbidity-min 1".into(),
+            "",
+            2,
+            "--turbidity-min 1|[2, 6]",
+        ),
+        ("train --model cie".into(), "", 2, "--model cie"),
+        ("train --model neural".into(), "", 2, "--model neural"),
+        ("train --target-nrmse nan".into(), "", 2, "--target-nrmse"),
+        (
+            format!("{schedule} --date 2026-06-21 --step 0"),
+            "",
+            2,
+            "--step",
+        ),
+        ("bench --no-such-flag".into(), "", 2, "--no-such-flag"),
+        (
+            "captures synthesize --out x --min-elevation 80".into(),
+            "",
+            2,
+            "--min-elevation 80",
+        ),
+        // Bad input on stdin: an end a refused value sits on is open, "above 0" is `(0`.
+        ("cct".into(), "0.2,0\n", 2, "stdin line 1|(0, 1]"),
+        (
+            "cct".into(),
+            "0.23,0.22\n",
+            2,
+            "stdin line 1|[1000, 100000) K",
+        ),
+        ("sample --sun-zenith 30".into(), "0,0\nx\n", 2, "line 2"),
+        // Bad input files.
+        (
+            format!("sample --model neural --weights {g} --sun-zenith 30"),
+            "",
+            2,
+            "--weights|truncated",
+        ),
+        (
+            format!("train --init-weights {g}"),
+            "",
+            2,
+            "--init-weights|truncated",
+        ),
+        (
+            format!("train --checkpoint {g}"),
+            "",
+            2,
+            "--checkpoint|not a sky-train checkpoint",
+        ),
+        (
+            format!("export --format f32 --name X --weights {g} --out {t}/x.rs"),
+            "",
+            2,
+            "--weights",
+        ),
+        (
+            format!("eval --model neural --weights {g} --out {t}/e"),
+            "",
+            2,
+            "--weights",
+        ),
+        (
+            format!("captures train --input {t}/caps"),
+            "",
+            2,
+            "--input|captures.toml",
+        ),
+        (
+            format!("captures strip --input {t}/caps --weights {g} --out {t}/s.png"),
+            "",
+            2,
+            "--weights",
+        ),
+        (
+            format!("sample --model aoas --style {g} --sun-zenith 30"),
+            "",
+            2,
+            "--style",
+        ),
+        (
+            format!("{schedule} --measurements {t}/m.csv"),
+            "",
+            2,
+            "--measurements|line 2",
+        ),
+        (
+            format!("{schedule} --measurements {t}/none.csv"),
+            "",
+            2,
+            "--measurements",
+        ),
+        // The work itself: a training with its defaults.
+        ("train --model sh --max-iterations 1".into(), "", 0, ""),
+    ];
+    let mut wrong = Vec::new();
+    for (line, stdin, status, needles) in &cases {
+        let args: Vec<&str> = line.split(' ').collect();
+        let out = sky_train(&args, stdin);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        let lines = stderr.trim_end().lines().count();
+        let ok = out.status.code() == Some(*status)
+            && (*status == 0 || lines == 1)
+            && needles.split('|').all(|n| stderr.contains(n))
+            && !(stderr.contains(" deg") && stderr.contains(" rad"))
+            && !stderr.contains("e-38")
+            && !stderr.contains("0000000");
+        if !ok {
+            wrong.push(format!("{line}: {:?} `{}`", out.status, stderr.trim_end()));
+        }
+    }
+    // A failure of the work: stdout cannot be written.
+    let full = Command::new(env!("CARGO_BIN_EXE_sky-train"))
+        .args(["sample", "--sun-zenith", "30"])
+        .stdin(std::fs::File::open("/dev/null").expect("null"))
+        .stdout(
+            std::fs::OpenOptions::new()
+                .write(true)
+                .open("/dev/full")
+                .expect("full"),
+        )
+        .output()
+        .expect("runs");
+    if full.status.code() != Some(1) {
+        wrong.push(format!("sample > /dev/full: {:?}", full.status));
+    }
+    assert!(
+        wrong.is_empty(),
+        "wrong status or message:\n{}",
+        wrong.join("\n")
+    );
+}
