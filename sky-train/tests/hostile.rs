@@ -21,12 +21,15 @@ fn sky_train(args: &[&str], stdin: &str) -> Output {
         .stderr(std::process::Stdio::piped())
         .spawn()
         .expect("prlimit and sky-train run");
-    child
+    // A command that refuses its arguments may end before it reads stdin.
+    let written = child
         .stdin
         .take()
         .expect("stdin")
-        .write_all(stdin.as_bytes())
-        .expect("stdin written");
+        .write_all(stdin.as_bytes());
+    if let Err(e) = written {
+        assert_eq!(e.kind(), std::io::ErrorKind::BrokenPipe, "stdin written");
+    }
     child.wait_with_output().expect("sky-train ends")
 }
 
@@ -658,6 +661,10 @@ fn outputs_are_checked_before_the_work_starts() {
         (
             format!("gallery --out {t}/plain/x"),
             "--out|is not a folder",
+        ),
+        (
+            format!("locus-table --out {t}/missing/x.rs"),
+            "--out|does not exist",
         ),
         (
             format!("showcase --out {t}/plain/x"),

@@ -12,6 +12,7 @@ pub mod eval;
 pub mod export;
 pub mod fit_sh;
 pub mod gallery;
+pub mod locus_table;
 pub mod render;
 pub mod sample;
 pub mod schedule;
