@@ -533,7 +533,7 @@ pub fn train<V: Validation + ?Sized>(
                 moved
             }
             Optimizer::Backprop => {
-                backprop::epoch(&mut net, &mut momentum, set, &scaling, &mut rng);
+                backprop::epoch(&mut net, &mut momentum, set, &scaling, &mut rng, deadline);
                 true
             }
         };
