@@ -9,10 +9,9 @@ use std::process::{Command, Output};
 /// fit; the 1.5 GiB and 24 GiB frames the cases' headers claim do not.
 const ADDRESS_SPACE: &str = "--as=1073741824";
 
-/// Runs `sky-train args` with `stdin` under [`ADDRESS_SPACE`].
-fn sky_train(args: &[&str], stdin: &str) -> Output {
-    use std::io::Write;
-    let mut child = Command::new("prlimit")
+/// Starts `sky-train args` under [`ADDRESS_SPACE`], its stdin, stdout and stderr piped.
+fn spawn(args: &[&str]) -> std::process::Child {
+    Command::new("prlimit")
         .arg(ADDRESS_SPACE)
         .arg(env!("CARGO_BIN_EXE_sky-train"))
         .args(args)
@@ -20,7 +19,13 @@ fn sky_train(args: &[&str], stdin: &str) -> Output {
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped())
         .spawn()
-        .expect("prlimit and sky-train run");
+        .expect("prlimit and sky-train run")
+}
+
+/// Runs `sky-train args` with `stdin` under [`ADDRESS_SPACE`].
+fn sky_train(args: &[&str], stdin: &str) -> Output {
+    use std::io::Write;
+    let mut child = spawn(args);
     // A command that refuses its arguments may end before it reads stdin.
     let written = child
         .stdin
@@ -896,4 +901,39 @@ fn errors_name_what_was_checked_and_exit_statuses_say_whose_fault() {
         "wrong status or message:\n{}",
         wrong.join("\n")
     );
+}
+
+/// Case 5 (`sample` in bounded memory): rows are streamed, a block of 4096 at a time: the first
+/// block's results arrive while stdin is still open (before, every row was held until the end
+/// of the input), and a bad line after it leaves that block written, exit status 2.
+#[test]
+fn sample_streams_its_rows() {
+    use std::io::{BufRead, BufReader, Write};
+    let mut child = spawn(&["sample", "--sun-zenith", "30"]);
+    let mut stdin = child.stdin.take().expect("stdin");
+    stdin
+        .write_all("10,20\n".repeat(4096).as_bytes())
+        .expect("written");
+    stdin.flush().expect("flushed");
+    let stdout = child.stdout.take().expect("stdout");
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let lines: Vec<String> = BufReader::new(stdout)
+            .lines()
+            .take(4097)
+            .map(|l| l.expect("text"))
+            .collect();
+        let _ = tx.send(lines);
+    });
+    let first = rx
+        .recv_timeout(std::time::Duration::from_secs(120))
+        .expect("the first block's rows arrive while stdin is open");
+    assert_eq!(first.len(), 4097);
+    assert!(first[4096].starts_with("10,20,"), "{}", first[4096]);
+    stdin.write_all(b"x\n").expect("written");
+    drop(stdin);
+    let out = child.wait_with_output().expect("ends");
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("stdin line 4097"), "{stderr}");
 }
