@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Coverage-guided fuzzing of every decoder of outside input (fuzz/fuzz_targets/), with libFuzzer
 # through cargo-fuzz (installed by scripts/setup.sh into .tools/cargo-fuzz):
-#   scripts/fuzz.sh [SECONDS]   builds the targets, then runs each for SECONDS (default 30; five
-#                               targets, 150 s in all), starting from the seeds in fuzz/corpus/
+#   scripts/fuzz.sh [SECONDS]   builds the targets, then runs each for SECONDS (default 30; six
+#                               targets, 180 s in all), starting from the seeds in fuzz/corpus/
 # Prints per target the executions, the coverage reached (libFuzzer's `cov`: instrumented edges,
 # and `ft`: features) and the corpus size; exits non-zero on the first crash, leak, timeout or
 # out-of-memory, whose input libFuzzer writes to fuzz/artifacts/TARGET/.
@@ -15,8 +15,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 seconds=${1:-30}
 cargo_fuzz="${SKY_CARGO_FUZZ:-$root/.tools/cargo-fuzz/bin/cargo-fuzz}"
-# The weather issue's measurement files: add their target's name here when it lands.
-TARGETS=(weight_file capture_frame capture_manifest style_file stdin_csv)
+TARGETS=(weight_file capture_frame capture_manifest style_file stdin_csv measurements)
 
 cd "$root/fuzz"
 "$cargo_fuzz" build --sanitizer none --release

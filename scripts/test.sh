@@ -4,7 +4,7 @@
 #          (among them sky-train/tests/module_graph.rs: sky-train's modules import without cycles),
 #          the micromath accuracy test with sky-core's `micromath` feature on,
 #          sky-core's examples, `cargo publish --dry-run` of the publishable crates,
-#          coverage-guided fuzzing of the decoders of outside input (scripts/fuzz.sh: five
+#          coverage-guided fuzzing of the decoders of outside input (scripts/fuzz.sh: six
 #          libFuzzer targets, 30 s each), the sh blocks of README.md and docs/
 #          (scripts/doc-blocks.sh; their Rust blocks are doctests of tests/src/lib.rs)
 #   cross: sky-core for thumbv7em / riscv32imac / wasm32 without std or alloc, and the firmware
