@@ -14,8 +14,8 @@ use crate::args::{ParamError, radians};
 const BLOCK: usize = 4096;
 
 /// Evaluates the sky of `args` at the `view_zenith_deg,view_azimuth_deg` lines of `input` and
-/// writes `view_zenith_deg,view_azimuth_deg,Y,x,y,R,G,B` to `output`, streaming: [`BLOCK`]
-/// rows at a time, so that a bad line among the first [`BLOCK`] leaves nothing written, and a
+/// writes `view_zenith_deg,view_azimuth_deg,Y,x,y,R,G,B` to `output`, streaming: `BLOCK`
+/// rows at a time, so that a bad line among the first `BLOCK` leaves nothing written, and a
 /// later one leaves the blocks before it (the exit status says the output is incomplete).
 ///
 /// # Errors

@@ -19,7 +19,7 @@ pub const MOMENTUM: f64 = 0.9;
 const BLOCK: usize = 256;
 
 /// One epoch: every example once, in a random order, one update each; cut short when
-/// `deadline` passes (checked every [`BLOCK`] examples: an epoch of a large set or network
+/// `deadline` passes (checked every `BLOCK` examples: an epoch of a large set or network
 /// takes minutes). Returns the number of examples trained on.
 pub fn epoch(
     network: &mut Net,
