@@ -38,6 +38,8 @@ pub mod pages {
     pub mod weather {}
     #[doc = include_str!("../../sky-core/README.md")]
     pub mod sky_core_readme {}
+    #[doc = include_str!("../../sky-gpu/README.md")]
+    pub mod sky_gpu_readme {}
     #[doc = include_str!("../../sky-train/README.md")]
     pub mod sky_train_readme {}
 }
