@@ -49,7 +49,7 @@ pub fn file(flag: &str, path: &Path, folder: Folder) -> Result<(), ParamError> {
 /// of `extensions` (without the dot, any case), in a folder that exists.
 ///
 /// # Errors
-/// As [`file`], and a [`ParamError`] listing the extensions.
+/// As [`file()`], and a [`ParamError`] listing the extensions.
 pub fn file_ending(flag: &str, path: &Path, extensions: &[&str]) -> Result<(), ParamError> {
     let ext = path
         .extension()
