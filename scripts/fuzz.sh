@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Coverage-guided fuzzing of every decoder of outside input (fuzz/fuzz_targets/), with libFuzzer
 # through cargo-fuzz (installed by scripts/setup.sh into .tools/cargo-fuzz):
-#   scripts/fuzz.sh [SECONDS]   builds the targets, then runs each for SECONDS (default 30; five
+#   scripts/fuzz.sh [SECONDS]   builds the targets, then runs each for SECONDS (default 25; six
 #                               targets, 150 s in all), starting from the seeds in fuzz/corpus/
 # Prints per target the executions, the coverage reached (libFuzzer's `cov`: instrumented edges,
 # and `ft`: features) and the corpus size; exits non-zero on the first crash, leak, timeout or
@@ -13,10 +13,9 @@
 # it), and `none` works with the stable toolchain; libFuzzer still guides by coverage.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-seconds=${1:-30}
+seconds=${1:-25}
 cargo_fuzz="${SKY_CARGO_FUZZ:-$root/.tools/cargo-fuzz/bin/cargo-fuzz}"
-# The weather issue's measurement files: add their target's name here when it lands.
-TARGETS=(weight_file capture_frame capture_manifest style_file stdin_csv)
+TARGETS=(weight_file capture_frame capture_manifest style_file stdin_csv measurements)
 
 cd "$root/fuzz"
 "$cargo_fuzz" build --sanitizer none --release

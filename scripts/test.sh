@@ -4,8 +4,8 @@
 #          (among them sky-train/tests/module_graph.rs: sky-train's modules import without cycles),
 #          the micromath accuracy test with sky-core's `micromath` feature on,
 #          sky-core's examples, `cargo publish --dry-run` of the publishable crates,
-#          coverage-guided fuzzing of the decoders of outside input (scripts/fuzz.sh: five
-#          libFuzzer targets, 30 s each), the sh blocks of README.md and docs/
+#          coverage-guided fuzzing of the decoders of outside input (scripts/fuzz.sh: six
+#          libFuzzer targets, 25 s each), the sh blocks of README.md and docs/
 #          (scripts/doc-blocks.sh; their Rust blocks are doctests of tests/src/lib.rs)
 #   cross: sky-core for thumbv7em / riscv32imac / wasm32 without std or alloc, and the firmware
 #          examples under qemu (Cortex-M4F; fixed point on Cortex-M3 and M0) checked against
@@ -46,8 +46,8 @@ done
 step "cargo publish --dry-run: sky-core, sky-gpu and sky-train package and build from their packaged sources"
 cargo publish --workspace --dry-run --locked --allow-dirty
 
-step "coverage-guided fuzzing (libFuzzer): every decoder of outside input, 30 s each"
-scripts/fuzz.sh 30
+step "coverage-guided fuzzing (libFuzzer): every decoder of outside input, 25 s each"
+scripts/fuzz.sh 25
 
 step "the sh and toml blocks of README.md and docs/ run as written"
 scripts/doc-blocks.sh

@@ -46,6 +46,14 @@ pub(crate) fn describe(
             max,
         } => {
             let (base, unit) = split(parameter);
+            // The ends as they were checked: `f32::MIN_POSITIVE` stands for "above 0", and a
+            // refused value at an end means that end is excluded.
+            let positive = min == f32::MIN_POSITIVE;
+            let (open_min, open_max) = (positive || value == min, value == max);
+            let min = if positive { 0.0 } else { min };
+            if positive && max >= f32::MAX {
+                return format!("{}{separator}{value} must be positive", name(base));
+            }
             let (value, min, max, unit) = match unit {
                 "rad" => (
                     value.to_degrees(),
@@ -56,8 +64,12 @@ pub(crate) fn describe(
                 "" => (value, min, max, String::new()),
                 other => (value, min, max, format!(" {other}")),
             };
+            let (low, high) = (
+                if open_min { "(" } else { "[" },
+                if open_max { ")" } else { "]" },
+            );
             format!(
-                "{}{separator}{value}{unit} is outside the valid range [{min}, {max}]{unit}",
+                "{}{separator}{value}{unit} is outside the valid range {low}{min}, {max}{high}{unit}",
                 name(base)
             )
         }

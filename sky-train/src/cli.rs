@@ -10,7 +10,7 @@ use clap::{Parser, Subcommand};
 use crate::commands::{
     self, SkyArgs, bench::BenchArgs, daylight::DaylightArgs, daylight_sky::DaylightSkyArgs,
     daylight_tables::DaylightTablesArgs, eval::EvalArgs, export::ExportArgs, fit_sh::FitShArgs,
-    fuzz_weights::FuzzArgs, gallery::GalleryArgs, locus_table::LocusTableArgs, render::RenderArgs,
+    gallery::GalleryArgs, locus_table::LocusTableArgs, render::RenderArgs,
     schedule::ScheduleArgs, showcase::ShowcaseArgs, size_study::SizeStudyArgs,
     spectrum::SpectrumArgs, train::TrainArgs,
 };
@@ -58,8 +58,6 @@ pub enum Command {
     /// same way: mean NRMSE and irradiance on the paper's protocol, bytes, ns/direction (a
     /// Markdown table on stdout).
     SizeStudy(SizeStudyArgs),
-    /// Fuzz sky-core's weight-file decoder with mutated files for a bounded time.
-    FuzzWeights(FuzzArgs),
     /// Fit a model's spherical-harmonics coefficients as polynomials in sun zenith and
     /// turbidity (seed 001) and write them as a Rust table for sky-core.
     FitSh(FitShArgs),
@@ -129,7 +127,6 @@ pub fn execute(command: Command, input: &mut dyn BufRead, output: &mut dyn Write
         Command::Eval(args) => commands::eval::run(&args, output),
         Command::Export(args) => commands::export::run(&args, output),
         Command::SizeStudy(args) => commands::size_study::run(&args, output),
-        Command::FuzzWeights(args) => commands::fuzz_weights::run(&args, output),
         Command::FitSh(args) => commands::fit_sh::run(&args, output),
         Command::LocusTable(args) => commands::locus_table::run(&args, output),
         Command::Schedule(args) => commands::schedule::run(&args, output),

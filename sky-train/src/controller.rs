@@ -54,66 +54,118 @@ pub struct MeasuredRow {
     pub measurement: Measurement,
 }
 
-/// Reads a CSV file of outdoor measurements: a header naming the columns `utc` (RFC 3339) and
-/// either `global_lux` or `ghi_wm2` with an optional `dhi_wm2` (in any order; other columns
-/// are ignored), then one reading per line (blank lines and `#` comments skipped).
+/// The largest measurement file read, in bytes: a year of readings every minute (525,600
+/// lines of some 40 bytes) fits three times over.
+pub const MAX_MEASUREMENT_BYTES: u64 = 64 << 20;
+
+/// Reads a CSV file of outdoor measurements ([`parse_measurements`]), at most
+/// [`MAX_MEASUREMENT_BYTES`] long.
 ///
 /// # Errors
-/// A [`ParamError`] naming the file, the line and the column for an unreadable file, a missing
-/// or ambiguous column, a bad time or a field that is not a number; none for a file without rows.
-pub fn read_measurements(path: &Path) -> Result<Vec<MeasuredRow>> {
-    let name = path.display();
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| ParamError(format!("--measurements {name}: {e}")))?;
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .map(|(n, l)| (n + 1, l.trim()))
-        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
-    let Some((_, header)) = lines.next() else {
-        return Err(ParamError(format!("--measurements {name}: the file is empty")).into());
+/// A [`ParamError`] naming `--measurements` and the file: it cannot be read, is too long, or
+/// [`parse_measurements`] refuses it.
+pub fn read_measurements(path: &Path) -> Result<Vec<MeasuredRow>, ParamError> {
+    use std::io::Read;
+    let source = format!("--measurements {}", path.display());
+    let file = std::fs::File::open(path).map_err(|e| ParamError(format!("{source}: {e}")))?;
+    let mut input = std::io::BufReader::new(file.take(MAX_MEASUREMENT_BYTES + 1));
+    let rows = parse_measurements(&mut input, &source)?;
+    if input.get_ref().limit() == 0 {
+        return Err(ParamError(format!(
+            "{source}: longer than {MAX_MEASUREMENT_BYTES} bytes"
+        )));
+    }
+    Ok(rows)
+}
+
+/// Parses outdoor measurements ([`crate::csv_input::lines`]): a header naming the columns `utc`
+/// (RFC 3339) and either `global_lux` or `ghi_wm2` with an optional `dhi_wm2` (in any order,
+/// any case; other columns are ignored), then one reading per line (blank lines and `#`
+/// comments skipped): finite, non-negative, the diffuse part not above the global, the times
+/// strictly increasing.
+///
+/// # Errors
+/// A one-line [`ParamError`] starting with `source` and naming the line and the column for a
+/// missing or ambiguous column, a bad time, a field that is not a number or out of range, or a
+/// time not after the one before; none for a file without rows.
+pub fn parse_measurements(
+    input: &mut dyn std::io::BufRead,
+    source: &str,
+) -> Result<Vec<MeasuredRow>, ParamError> {
+    use crate::csv_input::shown;
+    let mut lines = crate::csv_input::lines(input, source);
+    let mut next = || loop {
+        match lines.next_line() {
+            Some(Ok(l)) if l.starts_with('#') => {}
+            other => return other.transpose().map(|l| l.map(|l| (lines.line(), l))),
+        }
     };
-    let columns: Vec<&str> = header.split(',').map(str::trim).collect();
-    let find = |c: &str| columns.iter().position(|h| *h == c);
+    let Some((header_line, header)) = next()? else {
+        return Err(ParamError(format!("{source}: the file is empty")));
+    };
+    let columns: Vec<String> = header
+        .split(',')
+        .map(|c| c.trim().to_ascii_lowercase())
+        .collect();
+    let find = |c: &str| columns.iter().position(|h| h == c);
     let missing = || {
         ParamError(format!(
-            "--measurements {name}: the header `{header}` needs the columns utc and global_lux, or utc and ghi_wm2 (with dhi_wm2 optionally)"
+            "{source} line {header_line}: the header `{}` needs the columns utc and global_lux, or utc and ghi_wm2 (with dhi_wm2 optionally)",
+            shown(&header)
         ))
     };
     let utc = find("utc").ok_or_else(missing)?;
     let (lux, ghi, dhi) = (find("global_lux"), find("ghi_wm2"), find("dhi_wm2"));
     if lux.is_some() && (ghi.is_some() || dhi.is_some()) || (lux.is_none() && ghi.is_none()) {
-        return Err(missing().into());
+        return Err(missing());
     }
-    let mut rows = Vec::new();
-    for (n, line) in lines {
+    let mut rows: Vec<MeasuredRow> = Vec::new();
+    let mut previous: Option<(usize, f64)> = None;
+    while let Some((n, line)) = next()? {
+        let error = |what: String| ParamError(format!("{source} line {n}: {what}"));
         let fields: Vec<&str> = line.split(',').map(str::trim).collect();
         let at = |i: usize, column: &str| {
-            fields.get(i).copied().ok_or_else(|| {
-                ParamError(format!("--measurements {name} line {n}: no {column} field"))
-            })
+            fields
+                .get(i)
+                .copied()
+                .ok_or_else(|| error(format!("no {column} field")))
         };
         let number = |i: usize, column: &str| -> Result<f32, ParamError> {
             let v = at(i, column)?;
-            v.parse::<f32>().map_err(|_| {
-                ParamError(format!(
-                    "--measurements {name} line {n}: {column} `{v}` is not a number"
-                ))
-            })
+            match v.parse::<f32>() {
+                Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
+                _ => Err(error(format!(
+                    "{column} `{}`: expected a finite number, at least 0",
+                    shown(v)
+                ))),
+            }
         };
-        let unix = UnixTime::parse(at(utc, "utc")?)
-            .map_err(|e| ParamError(format!("--measurements {name} line {n}: {e:#}")))?;
+        let text = at(utc, "utc")?;
+        let unix = UnixTime::parse(text).map_err(|e| error(format!("utc: {e:#}")))?;
+        if let Some((line, t)) = previous
+            && unix.0 <= t
+        {
+            return Err(error(format!(
+                "utc {}: not after the time on line {line} (the rows must be in time order, each time once)",
+                shown(text)
+            )));
+        }
+        previous = Some((n, unix.0));
         let (y, mo, d, h, mi, sec) = unix.to_civil();
-        let time = UtcTime::new(y, mo, d, h, mi, sec)
-            .map_err(|e| ParamError(format!("--measurements {name} line {n}: utc: {e}")))?;
+        let time = UtcTime::new(y, mo, d, h, mi, sec).map_err(|e| error(format!("utc: {e}")))?;
         let measurement = match (lux, ghi, dhi) {
             (Some(i), _, _) => Measurement::GlobalIlluminance(number(i, "global_lux")?),
-            (None, Some(g), Some(d)) => Measurement::Irradiance {
-                global: number(g, "ghi_wm2")?,
-                diffuse: number(d, "dhi_wm2")?,
-            },
+            (None, Some(g), Some(d)) => {
+                let (global, diffuse) = (number(g, "ghi_wm2")?, number(d, "dhi_wm2")?);
+                if diffuse > global {
+                    return Err(error(format!(
+                        "dhi_wm2 {diffuse} is above ghi_wm2 {global} (the diffuse part of the global irradiance)"
+                    )));
+                }
+                Measurement::Irradiance { global, diffuse }
+            }
             (None, Some(g), None) => Measurement::GlobalIrradiance(number(g, "ghi_wm2")?),
-            (None, None, _) => return Err(missing().into()),
+            (None, None, _) => return Err(missing()),
         };
         rows.push(MeasuredRow {
             time,
@@ -245,8 +297,9 @@ pub fn cct_lines(input: &mut dyn BufRead, output: &mut dyn Write) -> Result<()> 
         let [x, y] = row.values.map(|v| v as f32);
         let c = cct::cct_duv(x, y).map_err(|e| {
             ParamError(format!(
-                "stdin line {}: {e} (x in [0, 1], y in (0, 1], CCT {}-{} K)",
+                "stdin line {}: {} (x in [0, 1], y in (0, 1], CCT between {} and {} K)",
                 row.line,
+                crate::args::describe(e, str::to_owned, " = "),
                 cct::MIN_CCT,
                 cct::MAX_CCT
             ))
@@ -255,4 +308,84 @@ pub fn cct_lines(input: &mut dyn BufRead, output: &mut dyn Write) -> Result<()> 
         writeln!(output, "{xs},{ys},{:.3},{:.7}", c.kelvin, c.duv)?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<Vec<MeasuredRow>, String> {
+        parse_measurements(&mut text.as_bytes(), "--measurements m.csv").map_err(|e| e.0)
+    }
+
+    /// Bad rows are refused with the file, the line and the column; good files with a
+    /// byte-order mark, comments, blank lines, columns in any order and case are read.
+    #[test]
+    fn bad_measurement_rows_name_the_file_and_line() {
+        let good = "\u{feff}# site A\nUTC, ghi_wm2 ,DHI_WM2,note\n\n2026-06-21T10:00:00Z,800,100,a\n2026-06-21T10:01:00Z,810,820.5e-1,b\n";
+        let rows = parse(good).expect("read");
+        assert_eq!(rows.len(), 2);
+        assert!(matches!(
+            rows[1].measurement,
+            Measurement::Irradiance { global, diffuse } if global == 810.0 && diffuse == 82.05
+        ));
+        let header = "utc,ghi_wm2,dhi_wm2\n2026-06-21T10:00:00Z,800,100\n";
+        for (row, needle) in [
+            (
+                "2026-06-21T10:01:00Z,NaN,100",
+                "line 3: ghi_wm2 `NaN`: expected a finite number",
+            ),
+            ("2026-06-21T10:01:00Z,inf,100", "line 3: ghi_wm2 `inf`"),
+            (
+                "2026-06-21T10:01:00Z,800,-1",
+                "line 3: dhi_wm2 `-1`: expected a finite number, at least 0",
+            ),
+            (
+                "2026-06-21T10:01:00Z,100,200",
+                "line 3: dhi_wm2 200 is above ghi_wm2 100",
+            ),
+            ("2026-06-21 10:01,800,100", "line 3: utc"),
+            ("yesterday,800,100", "line 3: utc"),
+            (
+                "2026-06-21T09:00:00Z,800,100",
+                "line 3: utc 2026-06-21T09:00:00Z: not after the time on line 2",
+            ),
+            (
+                "2026-06-21T10:00:00Z,800,100",
+                "line 3: utc 2026-06-21T10:00:00Z: not after the time on line 2",
+            ),
+            (
+                "2026-06-21T12:00:00+02:00,800,100",
+                "not after the time on line 2",
+            ),
+            ("2026-06-21T10:01:00Z,800", "line 3: no dhi_wm2 field"),
+            ("2026-06-21T10:01:00Z,8\u{1b}[2J,1", "ghi_wm2 `8\\u{1b}[2J`"),
+        ] {
+            let e = parse(&format!("{header}{row}\n")).expect_err(row);
+            assert!(e.starts_with("--measurements m.csv line 3: "), "{e}");
+            assert!(e.contains(needle) && !e.contains('\n'), "{row}: {e}");
+        }
+        for bad_header in [
+            "time,ghi_wm2",
+            "utc,global_lux,ghi_wm2",
+            "utc,dhi_wm2",
+            "2026-06-21T10:00:00Z,800",
+        ] {
+            let e = parse(&format!("# c\n{bad_header}\n")).expect_err(bad_header);
+            assert!(
+                e.starts_with("--measurements m.csv line 2: the header"),
+                "{e}"
+            );
+        }
+        assert!(parse("").expect_err("empty").ends_with("the file is empty"));
+        let long = format!(
+            "utc,global_lux\n{}\n",
+            "1".repeat(crate::csv_input::MAX_LINE_BYTES + 1)
+        );
+        assert!(
+            parse(&long)
+                .expect_err("long")
+                .contains("line 2: the line is longer")
+        );
+    }
 }

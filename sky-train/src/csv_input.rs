@@ -27,36 +27,74 @@ pub struct Row {
     pub values: [f64; 2],
 }
 
+/// The non-blank lines of a CSV input, trimmed, each with its 1-based number: a byte-order
+/// mark before the first is dropped, a line longer than [`MAX_LINE_BYTES`] or not UTF-8 is an
+/// error naming the input (`stdin`, `--measurements FILE`) and the line.
+pub struct Lines<'a> {
+    input: &'a mut dyn BufRead,
+    source: String,
+    line: usize,
+    buf: Vec<u8>,
+}
+
+/// The lines of `input`, named `source` in errors (see [`Lines`]).
+pub fn lines<'a>(input: &'a mut dyn BufRead, source: impl Into<String>) -> Lines<'a> {
+    Lines {
+        input,
+        source: source.into(),
+        line: 0,
+        buf: Vec::new(),
+    }
+}
+
+/// Whether `fields` are exactly the column `names` (case and surrounding spaces aside): how
+/// every reader knows a header line.
+#[must_use]
+pub fn names_columns(fields: &[&str], names: &[&str]) -> bool {
+    fields.len() == names.len()
+        && fields
+            .iter()
+            .zip(names)
+            .all(|(f, n)| f.trim().eq_ignore_ascii_case(n))
+}
+
 /// The data rows of `input` with the columns `names` (e.g. `["x", "y"]`), in order. Every
 /// error is a one-line [`ParamError`] naming the line and the columns.
 pub struct Rows<'a> {
-    input: &'a mut dyn BufRead,
+    lines: Lines<'a>,
     names: [&'a str; 2],
-    line: usize,
-    buf: Vec<u8>,
 }
 
 /// The rows of `input` with the columns `names` (see the module docs).
 pub fn rows<'a>(input: &'a mut dyn BufRead, names: [&'a str; 2]) -> Rows<'a> {
     Rows {
-        input,
+        lines: lines(input, "stdin"),
         names,
-        line: 0,
-        buf: Vec::new(),
     }
 }
 
 impl Rows<'_> {
     fn error(&self, what: &str) -> ParamError {
         let [a, b] = self.names;
-        ParamError(format!(
-            "stdin line {}: expected `{a},{b}`: {what}",
-            self.line
-        ))
+        self.lines.error(&format!("expected `{a},{b}`: {what}"))
+    }
+}
+
+impl Lines<'_> {
+    /// The number of the line last read.
+    #[must_use]
+    pub fn line(&self) -> usize {
+        self.line
+    }
+
+    /// `what` as an error at the line last read.
+    #[must_use]
+    pub fn error(&self, what: &str) -> ParamError {
+        ParamError(format!("{} line {}: {what}", self.source, self.line))
     }
 
     /// The next non-blank line's text, `None` at the end.
-    fn next_line(&mut self) -> Option<Result<String, ParamError>> {
+    pub fn next_line(&mut self) -> Option<Result<String, ParamError>> {
         use std::io::Read;
         loop {
             self.buf.clear();
@@ -88,18 +126,10 @@ impl Rows<'_> {
             }
         }
     }
-
-    /// Whether `fields` are the column names.
-    fn is_header(&self, fields: [&str; 2]) -> bool {
-        fields
-            .iter()
-            .zip(self.names)
-            .all(|(f, n)| f.eq_ignore_ascii_case(n))
-    }
 }
 
 /// The text shown for a line in an error: control characters escaped, at most 80 characters.
-fn shown(text: &str) -> String {
+pub fn shown(text: &str) -> String {
     let escaped: String = text.chars().flat_map(char::escape_debug).collect();
     match escaped.char_indices().nth(80) {
         Some((i, _)) => format!("{}...", &escaped[..i]),
@@ -112,7 +142,7 @@ impl Iterator for Rows<'_> {
 
     fn next(&mut self) -> Option<Self::Item> {
         loop {
-            let text = match self.next_line()? {
+            let text = match self.lines.next_line()? {
                 Ok(t) => t,
                 Err(e) => return Some(Err(e)),
             };
@@ -122,13 +152,13 @@ impl Iterator for Rows<'_> {
                     self.error(&format!("got `{}` (not two fields)", shown(&text)))
                 ));
             };
-            let first_content_line = self.line == 1;
-            if first_content_line && self.is_header([a, b]) {
+            let first_content_line = self.lines.line == 1;
+            if first_content_line && names_columns(&[a, b], &self.names) {
                 continue;
             }
             return Some(match (a.parse::<f64>(), b.parse::<f64>()) {
                 (Ok(x), Ok(y)) if x.is_finite() && y.is_finite() => Ok(Row {
-                    line: self.line,
+                    line: self.lines.line,
                     text: [a.to_owned(), b.to_owned()],
                     values: [x, y],
                 }),

@@ -138,19 +138,27 @@ pub fn encode<const H: usize>(weights: &NeuralWeights<H>) -> Result<Vec<u8>> {
 }
 
 /// Writes `weights` as a weight file, atomically: the bytes are decoded again and written only
-/// when they decode (every float finite, a valid header), so that a file a reader would refuse
-/// never replaces the one at `path`.
+/// when they decode (every float finite, a valid header) and make a sky at both ends and the
+/// middle of the trained domain, so that a file a reader would refuse never replaces the one
+/// at `path`.
 ///
 /// # Errors
 /// When the weights do not make a valid file (nothing is written then), or on I/O errors.
 pub fn write_weights<const H: usize>(path: &Path, weights: &NeuralWeights<H>) -> Result<()> {
-    let bytes = encode(weights)?;
-    NeuralWeights::<H>::decode(&bytes).map_err(|e| {
+    let not_written = |e: &dyn std::fmt::Display| {
         anyhow::anyhow!(
             "{}: not written: the network does not make a valid weight file ({e})",
             path.display()
         )
-    })?;
+    };
+    let bytes = encode(weights)?;
+    let decoded = NeuralWeights::<H>::decode(&bytes).map_err(|e| not_written(&e))?;
+    let (z0, z1) = decoded.sun_zenith_range;
+    let (t0, t1) = decoded.turbidity_range;
+    for (zenith, turbidity) in [(z0, t0), (0.5 * (z0 + z1), 0.5 * (t0 + t1)), (z1, t1)] {
+        let sun = sky_core::Sun::new(zenith, 0.0).map_err(|e| not_written(&e))?;
+        sky_core::NeuralSky::new(&decoded, sun, turbidity).map_err(|e| not_written(&e))?;
+    }
     write_atomically(path, |f| Ok(std::io::Write::write_all(f, &bytes)?))
 }
 
@@ -361,8 +369,13 @@ pub fn pretrained_fixed_source<const H: usize>(
     weights_path: &Path,
 ) -> Result<String> {
     check_const_name(name)?;
-    let fixed = FixedNeuralWeights::quantise(weights)
-        .map_err(|e| anyhow::anyhow!("{}: cannot quantise: {e}", weights_path.display()))?;
+    let fixed = FixedNeuralWeights::quantise(weights).map_err(|e| {
+        crate::args::ParamError(format!(
+            "--weights {}: cannot quantise to Q7.24: {}",
+            weights_path.display(),
+            crate::args::describe(e, str::to_owned, " ")
+        ))
+    })?;
     let file = file_name(weights_path);
     let mut doc = provenance(weights, &file);
     doc.push(format!(

@@ -8,6 +8,8 @@ use anyhow::{Context, Result, bail};
 use sky_core::Vec3;
 use sky_core::color;
 
+use crate::args::ParamError;
+
 /// A linear RGB image, row-major, top row first.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RgbImage {
@@ -67,8 +69,8 @@ impl Format {
     /// The format named by `path`'s extension.
     ///
     /// # Errors
-    /// When the extension is neither `.exr` nor `.png`.
-    pub fn from_path(path: &Path) -> Result<Self> {
+    /// A [`ParamError`] naming `--out` when the extension is neither `.exr` nor `.png`.
+    pub fn from_path(path: &Path) -> Result<Self, ParamError> {
         match path
             .extension()
             .and_then(|e| e.to_str())
@@ -77,10 +79,10 @@ impl Format {
         {
             Some("exr") => Ok(Self::Exr),
             Some("png") => Ok(Self::Png),
-            _ => bail!(
+            _ => Err(ParamError(format!(
                 "--out {}: the file name must end in .exr (linear float) or .png (sRGB)",
                 path.display()
-            ),
+            ))),
         }
     }
 }

@@ -35,8 +35,17 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e:#}");
-            ExitCode::from(if e.is::<ParamError>() { 2 } else { 1 })
+            // One line, whatever the causes' own layout (a TOML error spans several).
+            let text = format!("{e:#}");
+            let lines: Vec<&str> = text
+                .lines()
+                .map(str::trim)
+                .filter(|l| !l.is_empty())
+                .collect();
+            eprintln!("error: {}", lines.join(" "));
+            // Bad input anywhere in the chain is bad input, whatever context was added.
+            let bad_input = e.chain().any(|c| c.is::<ParamError>());
+            ExitCode::from(if bad_input { 2 } else { 1 })
         }
     }
 }

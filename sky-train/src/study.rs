@@ -57,7 +57,10 @@ pub fn run(
 ) -> Result<Vec<Row>> {
     for hidden in layouts {
         if !matches!(hidden.as_slice(), [6 | 12 | 24 | 48] | [12, 12]) {
-            bail!("size study: hidden layers {hidden:?} are not one of 6, 12, 24, 48 or 12,12");
+            return Err(crate::args::ParamError(format!(
+                "--layouts: hidden layers {hidden:?} are not one of 6, 12, 24, 48 or 12,12"
+            ))
+            .into());
         }
     }
     let mut config = TrainConfig::new(model);

@@ -9,10 +9,9 @@ use std::process::{Command, Output};
 /// fit; the 1.5 GiB and 24 GiB frames the cases' headers claim do not.
 const ADDRESS_SPACE: &str = "--as=1073741824";
 
-/// Runs `sky-train args` with `stdin` under [`ADDRESS_SPACE`].
-fn sky_train(args: &[&str], stdin: &str) -> Output {
-    use std::io::Write;
-    let mut child = Command::new("prlimit")
+/// Starts `sky-train args` under [`ADDRESS_SPACE`], its stdin, stdout and stderr piped.
+fn spawn(args: &[&str]) -> std::process::Child {
+    Command::new("prlimit")
         .arg(ADDRESS_SPACE)
         .arg(env!("CARGO_BIN_EXE_sky-train"))
         .args(args)
@@ -20,13 +19,22 @@ fn sky_train(args: &[&str], stdin: &str) -> Output {
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped())
         .spawn()
-        .expect("prlimit and sky-train run");
-    child
+        .expect("prlimit and sky-train run")
+}
+
+/// Runs `sky-train args` with `stdin` under [`ADDRESS_SPACE`].
+fn sky_train(args: &[&str], stdin: &str) -> Output {
+    use std::io::Write;
+    let mut child = spawn(args);
+    // A command that refuses its arguments may end before it reads stdin.
+    let written = child
         .stdin
         .take()
         .expect("stdin")
-        .write_all(stdin.as_bytes())
-        .expect("stdin written");
+        .write_all(stdin.as_bytes());
+    if let Err(e) = written {
+        assert_eq!(e.kind(), std::io::ErrorKind::BrokenPipe, "stdin written");
+    }
     child.wait_with_output().expect("sky-train ends")
 }
 
@@ -564,4 +572,368 @@ fn training_budgets_are_kept() {
         &["--hidden 255,255", "67833", "3000"],
     );
     assert_eq!(code, 2);
+}
+
+/// Case 6: every output path and option is checked before the work starts: a `--out` in a
+/// folder that does not exist or under a plain file, a file name of the wrong type, or a
+/// `--hidden` layout the weight file cannot hold is refused with exit status 2 before any
+/// sampling, training, fitting or precomputation (before, `train --out /nonexistent/x.skyn`
+/// trained its whole budget and then failed with status 1). That the work did not start shows
+/// in what it would have left: no checkpoint, no cache folder, no output folder.
+#[test]
+fn outputs_are_checked_before_the_work_starts() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let t = path(dir.path());
+    std::fs::write(dir.path().join("plain"), "not a folder").expect("file");
+    synthesize(&dir.path().join("caps"), 64, 4);
+    let w = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../sky-core/weights/preetham.skyn"
+    );
+    // Training that leaves a checkpoint after its first iteration.
+    let train = format!("train --checkpoint {t}/ck --max-iterations 1");
+    let captures = format!("--input {t}/caps");
+    let physical = format!("--model physical --sun-zenith 30 --cache-dir {t}/cache");
+    let daylight = "daylight --elevations 0:10:5";
+    // Each command line (paths without spaces) and what its one error line names.
+    let cases = [
+        (
+            format!("{train} --out {t}/missing/x.skyn"),
+            "--out|does not exist",
+        ),
+        (
+            format!("{train} --out {t}/plain/x"),
+            "--out|is not a folder",
+        ),
+        (format!("{train} --out {t}"), "--out|is a folder"),
+        (
+            format!("{train} --hidden 6 --out {t}/f.skyn"),
+            "--hidden 6|--out",
+        ),
+        (
+            format!("{train} --hidden 6 --init-weights {w}"),
+            "--hidden 6|--init-weights",
+        ),
+        (
+            format!("train --checkpoint {t}/plain/x"),
+            "--checkpoint|is not a folder",
+        ),
+        (
+            format!("captures train {captures} --max-iterations 1 --out {t}/missing/x"),
+            "--out|does not exist",
+        ),
+        (
+            format!("captures train --input {t}/missing"),
+            "--input|not a folder",
+        ),
+        (
+            format!("captures interpolate --weights {w} {captures} --out {t}/plain/x"),
+            "--out|is not a folder",
+        ),
+        (
+            format!("captures interpolate --weights {w} {captures} --out {t}/i --width 17"),
+            "--width 17",
+        ),
+        (
+            format!("captures strip --weights {w} {captures} --out {t}/s.jpg"),
+            "--out|.png",
+        ),
+        (
+            format!("captures synthesize --width 16 --out {t}/plain/x"),
+            "--out|is not a folder",
+        ),
+        (format!("render {physical} --out {t}/r.jpg"), "--out|.png"),
+        (
+            format!("render {physical} --out {t}/missing/x.exr"),
+            "--out|does not exist",
+        ),
+        (
+            format!("sample --model physical --sun-zenith 30 --cache-dir {t}/plain/x"),
+            "--cache-dir|is not a folder",
+        ),
+        (
+            format!("fit-sh --model preetham --out {t}/plain/x.rs"),
+            "--out|is not a folder",
+        ),
+        (
+            format!("fit-sh --model preetham --out {t}/t.rs --report {t}/plain/x"),
+            "--report|is not a folder",
+        ),
+        (
+            format!("export --format glsl --out {t}/missing/x.glsl"),
+            "--out|does not exist",
+        ),
+        (
+            format!("gallery --out {t}/plain/x"),
+            "--out|is not a folder",
+        ),
+        (
+            format!("locus-table --out {t}/missing/x.rs"),
+            "--out|does not exist",
+        ),
+        (
+            format!("showcase --out {t}/plain/x"),
+            "--out|is not a folder",
+        ),
+        (
+            format!("eval --model neural-preetham --out {t}/plain/x"),
+            "--out|is not a folder",
+        ),
+        (
+            format!("{daylight} --plot-cct {t}/missing/x.svg"),
+            "--plot-cct|does not exist",
+        ),
+        (
+            format!("{daylight} --plot-illuminance {t}/a.png"),
+            "--plot-illuminance|.svg",
+        ),
+    ];
+    // Every case is run, and every one that is not refused at once is reported.
+    let mut wrong = Vec::new();
+    for (line, needles) in &cases {
+        let args: Vec<&str> = line.split(' ').collect();
+        let out = sky_train(&args, "");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        let refused = out.status.code() == Some(2)
+            && stderr.trim_end().lines().count() == 1
+            && needles.split('|').all(|n| stderr.contains(n));
+        if !refused {
+            wrong.push(format!(
+                "{args:?}: {:?} `{}`",
+                out.status,
+                stderr.trim_end()
+            ));
+        }
+        for left in ["ck", "cache", "missing", "i", "f.skyn"] {
+            if dir.path().join(left).exists() {
+                wrong.push(format!("{args:?}: the work started (left {left})"));
+                let p = dir.path().join(left);
+                let _ = std::fs::remove_dir_all(&p).or_else(|_| std::fs::remove_file(&p));
+            }
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "not refused at once:\n{}",
+        wrong.join("\n")
+    );
+}
+
+/// Case 9: errors that say what was checked, and exit statuses that say whose fault it was:
+/// 2 for every bad argument or bad input file, 1 only when the work itself fails (here: stdout
+/// is a full disk). `--model neural` names its weight file's own sun-zenith domain (20-60 deg
+/// here; [0, 180] before), an end a refused value sits on is printed open, a bound of "above 0"
+/// is not printed as 1.1754944e-38, no message mixes degrees and radians, and `train --model
+/// sh` trains with its defaults (it failed on its own default turbidities).
+#[test]
+fn errors_name_what_was_checked_and_exit_statuses_say_whose_fault() {
+    use sky_core::neural::NeuralWeights;
+    let dir = tempfile::tempdir().expect("temp dir");
+    let t = path(dir.path());
+    let shipped = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../sky-core/weights/preetham.skyn"
+    );
+    let mut narrow =
+        NeuralWeights::<12>::decode(&std::fs::read(shipped).expect("weights")).expect("decodes");
+    narrow.sun_zenith_range = (20f32.to_radians(), 60f32.to_radians());
+    let bytes = sky_train::export::encode(&narrow).expect("encodes");
+    std::fs::write(dir.path().join("narrow.skyn"), bytes).expect("written");
+    std::fs::write(dir.path().join("garbage"), "garbage").expect("written");
+    std::fs::create_dir(dir.path().join("caps")).expect("folder");
+    std::fs::write(dir.path().join("caps/captures.toml"), "not toml [[[").expect("written");
+    std::fs::write(dir.path().join("m.csv"), "utc,global_lux\nnope,5\n").expect("written");
+    let g = format!("{t}/garbage");
+    let schedule = "schedule --lat 48 --lon 16";
+    // Command line, stdin, exit status, what the one error line names.
+    let cases = [
+        // Bad arguments.
+        (
+            format!("sample --model neural --weights {t}/narrow.skyn --sun-zenith 70"),
+            "",
+            2,
+            "--sun-zenith 70 deg|[20, 60] deg",
+        ),
+        (
+            "sample --sun-zenith 30 --turbidity 7".into(),
+            "",
+            2,
+            "--turbidity 7|[2, 6]",
+        ),
+        ("render --width 0 --out x.png".into(), "", 2, "--width"),
+        ("size-study --model cie".into(), "", 2, "--model cie"),
+        (
+            "spectrum --sun-zenith 120".into(),
+            "",
+            2,
+            "--sun-zenith 120 deg|[0, 108] deg",
+        ),
+        ("eval --model neural".into(), "", 2, "--weights"),
+        ("fit-sh --model sh".into(), "", 2, "--model sh"),
+        (
+            "fit-sh --model preetham --turbidity-min 1".into(),
+            "",
+            2,
+            "--turbidity-min 1|[2, 6]",
+        ),
+        ("train --model cie".into(), "", 2, "--model cie"),
+        ("train --model neural".into(), "", 2, "--model neural"),
+        ("train --target-nrmse nan".into(), "", 2, "--target-nrmse"),
+        (
+            format!("{schedule} --date 2026-06-21 --step 0"),
+            "",
+            2,
+            "--step",
+        ),
+        ("bench --no-such-flag".into(), "", 2, "--no-such-flag"),
+        (
+            "captures synthesize --out x --min-elevation 80".into(),
+            "",
+            2,
+            "--min-elevation 80",
+        ),
+        // Bad input on stdin: an end a refused value sits on is open, "above 0" is `(0`.
+        ("cct".into(), "0.2,0\n", 2, "stdin line 1|(0, 1]"),
+        (
+            "cct".into(),
+            "0.23,0.22\n",
+            2,
+            "stdin line 1|[1000, 100000) K",
+        ),
+        ("sample --sun-zenith 30".into(), "0,0\nx\n", 2, "line 2"),
+        // Bad input files.
+        (
+            format!("sample --model neural --weights {g} --sun-zenith 30"),
+            "",
+            2,
+            "--weights|truncated",
+        ),
+        (
+            format!("train --init-weights {g}"),
+            "",
+            2,
+            "--init-weights|truncated",
+        ),
+        (
+            format!("train --checkpoint {g}"),
+            "",
+            2,
+            "--checkpoint|not a sky-train checkpoint",
+        ),
+        (
+            format!("export --format f32 --name X --weights {g} --out {t}/x.rs"),
+            "",
+            2,
+            "--weights",
+        ),
+        (
+            format!("eval --model neural --weights {g} --out {t}/e"),
+            "",
+            2,
+            "--weights",
+        ),
+        (
+            format!("captures train --input {t}/caps"),
+            "",
+            2,
+            "--input|captures.toml",
+        ),
+        (
+            format!("captures strip --input {t}/caps --weights {g} --out {t}/s.png"),
+            "",
+            2,
+            "--weights",
+        ),
+        (
+            format!("sample --model aoas --style {g} --sun-zenith 30"),
+            "",
+            2,
+            "--style",
+        ),
+        (
+            format!("{schedule} --measurements {t}/m.csv"),
+            "",
+            2,
+            "--measurements|line 2",
+        ),
+        (
+            format!("{schedule} --measurements {t}/none.csv"),
+            "",
+            2,
+            "--measurements",
+        ),
+        // The work itself: a training with its defaults.
+        ("train --model sh --max-iterations 1".into(), "", 0, ""),
+    ];
+    let mut wrong = Vec::new();
+    for (line, stdin, status, needles) in &cases {
+        let args: Vec<&str> = line.split(' ').collect();
+        let out = sky_train(&args, stdin);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        let lines = stderr.trim_end().lines().count();
+        let ok = out.status.code() == Some(*status)
+            && (*status == 0 || lines == 1)
+            && needles.split('|').all(|n| stderr.contains(n))
+            && !(stderr.contains(" deg") && stderr.contains(" rad"))
+            && !stderr.contains("e-38")
+            && !stderr.contains("0000000");
+        if !ok {
+            wrong.push(format!("{line}: {:?} `{}`", out.status, stderr.trim_end()));
+        }
+    }
+    // A failure of the work: stdout cannot be written.
+    let full = Command::new(env!("CARGO_BIN_EXE_sky-train"))
+        .args(["sample", "--sun-zenith", "30"])
+        .stdin(std::fs::File::open("/dev/null").expect("null"))
+        .stdout(
+            std::fs::OpenOptions::new()
+                .write(true)
+                .open("/dev/full")
+                .expect("full"),
+        )
+        .output()
+        .expect("runs");
+    if full.status.code() != Some(1) {
+        wrong.push(format!("sample > /dev/full: {:?}", full.status));
+    }
+    assert!(
+        wrong.is_empty(),
+        "wrong status or message:\n{}",
+        wrong.join("\n")
+    );
+}
+
+/// Case 5 (`sample` in bounded memory): rows are streamed, a block of 4096 at a time: the first
+/// block's results arrive while stdin is still open (before, every row was held until the end
+/// of the input), and a bad line after it leaves that block written, exit status 2.
+#[test]
+fn sample_streams_its_rows() {
+    use std::io::{BufRead, BufReader, Write};
+    let mut child = spawn(&["sample", "--sun-zenith", "30"]);
+    let mut stdin = child.stdin.take().expect("stdin");
+    stdin
+        .write_all("10,20\n".repeat(4096).as_bytes())
+        .expect("written");
+    stdin.flush().expect("flushed");
+    let stdout = child.stdout.take().expect("stdout");
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let lines: Vec<String> = BufReader::new(stdout)
+            .lines()
+            .take(4097)
+            .map(|l| l.expect("text"))
+            .collect();
+        let _ = tx.send(lines);
+    });
+    let first = rx
+        .recv_timeout(std::time::Duration::from_secs(120))
+        .expect("the first block's rows arrive while stdin is open");
+    assert_eq!(first.len(), 4097);
+    assert!(first[4096].starts_with("10,20,"), "{}", first[4096]);
+    stdin.write_all(b"x\n").expect("written");
+    drop(stdin);
+    let out = child.wait_with_output().expect("ends");
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("stdin line 4097"), "{stderr}");
 }

@@ -136,12 +136,24 @@ proptest! {
     }
 
     /// Weights built by hand (every field public) rather than decoded: the constructor refuses
-    /// what the decoder would, and whatever it accepts evaluates finitely and non-negatively.
+    /// what the decoder would (a NaN or an infinity anywhere), and whatever it accepts evaluates
+    /// finitely and non-negatively.
     #[test]
     fn any_neural_weights_are_refused_or_give_non_negative_radiance(
         w in any_weights(), (z, a) in sun_angles(), t in turbidity(), d in any_dir()
     ) {
         let Ok(sun) = Sun::new(z, a) else { return Ok(()) };
+        let finite = w.hidden.iter().flatten()
+            .chain(&w.hidden_bias)
+            .chain(w.output.iter().flatten())
+            .chain(&w.output_bias)
+            .chain(&w.input_offset)
+            .chain(&w.input_scale)
+            .chain(&w.output_scale)
+            .all(|x| x.is_finite());
+        if !finite {
+            prop_assert!(NeuralSky::new(&w, sun, t).is_err(), "weights with a NaN or infinity accepted");
+        }
         if let Ok(sky) = NeuralSky::new(&w, sun, t) {
             prop_assert!(radiance_ok(sky.rgb(d)), "{d} -> {}", sky.rgb(d));
         }

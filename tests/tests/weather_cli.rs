@@ -320,11 +320,11 @@ fn bad_measurement_files_name_the_problem() {
         ("utc,global_lux\n2026-06-21 12:00,5\n", "line 2"),
         (
             "utc,global_lux\n2026-06-21T12:00:00Z,bright\n",
-            "`bright` is not a number",
+            "line 2: global_lux `bright`: expected a finite number",
         ),
         (
             "utc,global_lux\n2026-06-21T12:00:00Z,NaN\n",
-            "global illuminance must be a finite number",
+            "line 2: global_lux `NaN`: expected a finite number",
         ),
         (
             "utc,ghi_wm2\n2026-06-21T12:00:00Z,4000\n",
@@ -332,7 +332,7 @@ fn bad_measurement_files_name_the_problem() {
         ),
         (
             "utc,ghi_wm2,dhi_wm2\n2026-06-21T12:00:00Z,300,400\n",
-            "diffuse irradiance = 400 W/m²",
+            "line 2: dhi_wm2 400 is above ghi_wm2 300",
         ),
         ("", "empty"),
     ];

@@ -163,7 +163,9 @@ impl<const H: usize> NeuralSky<H> {
     ///
     /// # Errors
     /// [`SkyError::OutOfRange`] for a sun zenith or turbidity outside the trained ranges (or
-    /// NaN).
+    /// NaN); [`SkyError::NotFinite`] for weights, biases or scalings that are NaN or infinite,
+    /// or so large that the network folded for this sky overflows f32 (a decoded weight file
+    /// has finite values; weights built by hand may not).
     pub fn new(weights: &NeuralWeights<H>, sun: Sun, turbidity: f32) -> Result<Self, SkyError> {
         let SkyInputs {
             sqrt_t,
@@ -201,6 +203,22 @@ impl<const H: usize> NeuralSky<H> {
             sky.coeff_y[j] = ws[2] * sin_r + ws[3] * cos_r;
             sky.coeff_z[j] = ws[4];
             sky.coeff_d[j] = ws[5];
+        }
+        // A NaN or infinity anywhere in the weights reaches one of these (0 · ∞ is NaN too).
+        let folded = [
+            &sky.constant[..],
+            &sky.coeff_x,
+            &sky.coeff_y,
+            &sky.coeff_z,
+            &sky.coeff_d,
+            &sky.output_bias,
+            &sky.half_scale,
+        ];
+        let finite = |v: &[f32]| v.iter().all(|x| x.is_finite());
+        if !(folded.into_iter().all(finite) && sky.output.iter().all(|row| finite(row))) {
+            return Err(SkyError::NotFinite {
+                parameter: "network weights",
+            });
         }
         Ok(sky)
     }
@@ -531,5 +549,41 @@ mod tests {
             NeuralSky::new(&captured, sun, f32::NAN).is_ok(),
             "turbidity unused"
         );
+    }
+
+    #[test]
+    fn refuses_weights_that_are_not_finite() {
+        let sun = Sun::new(0.4, 0.0).expect("valid");
+        let refused = |w: &NeuralWeights<12>| {
+            matches!(
+                NeuralSky::new(w, sun, 3.0),
+                Err(SkyError::NotFinite {
+                    parameter: "network weights"
+                })
+            )
+        };
+        type Set = fn(&mut NeuralWeights<12>, f32);
+        let fields: [(&str, Set); 7] = [
+            ("hidden", |w, v| w.hidden[3][4] = v),
+            ("hidden bias", |w, v| w.hidden_bias[11] = v),
+            ("output", |w, v| w.output[2][7] = v),
+            ("output bias", |w, v| w.output_bias[1] = v),
+            ("input offset", |w, v| w.input_offset[5] = v),
+            ("input scale", |w, v| w.input_scale[0] = v),
+            ("output scale", |w, v| w.output_scale[2] = v),
+        ];
+        for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+            for (name, set) in fields {
+                let mut w = weights();
+                set(&mut w, bad);
+                assert!(refused(&w), "{name} {bad}");
+            }
+        }
+        // Finite, but the input scaling times the weight overflows f32.
+        let mut w = weights();
+        w.hidden[0][2] = 1e30;
+        w.input_scale[2] = 1e30;
+        assert!(refused(&w), "overflow");
+        assert!(NeuralSky::new(&weights(), sun, 3.0).is_ok());
     }
 }

@@ -11,7 +11,7 @@ use std::f64::consts::{PI, TAU};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use rayon::prelude::*;
 use sky_core::Vec3;
 use sky_core::geom::{Equirect, Extent};
@@ -19,6 +19,7 @@ use sky_core::neural::{NeuralSky, NeuralWeights};
 
 use super::Sequence;
 use super::manifest::UnixTime;
+use crate::args::ParamError;
 use crate::image_io::{self, RgbImage};
 
 /// One output step.
@@ -41,7 +42,7 @@ pub struct Step {
 /// When the step is not positive or SPA fails.
 pub fn steps(seq: &Sequence, step_minutes: f64, interval_minutes: f64) -> Result<Vec<Step>> {
     if !(step_minutes > 0.0 && step_minutes.is_finite()) {
-        bail!("--step must be a positive duration");
+        return Err(ParamError("--step must be a positive duration".into()).into());
     }
     let frames = &seq.frames;
     // Minutes of each capture after the first.
@@ -114,13 +115,7 @@ pub fn render(weights: &NeuralWeights<12>, step: &Step, width: usize) -> Result<
     #[allow(clippy::cast_possible_truncation)]
     let sun = sky_core::Sun::new(step.sun_zenith as f32, step.sun_azimuth as f32)
         .map_err(|e| anyhow::anyhow!("{e}"))?;
-    let sky = NeuralSky::new(weights, sun, 0.0).map_err(|e| {
-        anyhow::anyhow!(
-            "sun zenith {:.2} deg at {:.1} min: {e}",
-            step.sun_zenith.to_degrees(),
-            step.minutes
-        )
-    })?;
+    let sky = NeuralSky::new(weights, sun, 0.0).map_err(|e| outside_the_weights(step, e))?;
     let grid = Equirect::new(to_u32(width), to_u32(height), Extent::Sphere)
         .map_err(|e| anyhow::anyhow!("{e}"))?;
     let mut pixels = vec![Vec3::ZERO; width * height];
@@ -148,6 +143,29 @@ fn to_u32(k: usize) -> u32 {
     u32::try_from(k).unwrap_or(u32::MAX)
 }
 
+/// Checks an output width: even, at least 16 pixels.
+///
+/// # Errors
+/// A [`ParamError`] naming `--width`.
+pub fn check_width(width: usize) -> Result<(), ParamError> {
+    if width < 16 || !width.is_multiple_of(2) {
+        return Err(ParamError(format!(
+            "--width {width}: expected an even number of pixels, at least 16"
+        )));
+    }
+    Ok(())
+}
+
+/// The weights refuse the sun of `step` (bad input: weights trained on other captures), in
+/// degrees.
+fn outside_the_weights(step: &Step, e: sky_core::SkyError) -> ParamError {
+    ParamError(format!(
+        "--weights: the sun at {:.1} min is outside the weights' trained range: {}",
+        step.minutes,
+        crate::args::describe(e, str::to_owned, " ")
+    ))
+}
+
 /// The file name of output step `i`.
 #[must_use]
 pub fn file_name(i: usize) -> String {
@@ -170,21 +188,13 @@ pub fn write_steps(
     out: &Path,
     progress: bool,
 ) -> Result<Vec<PathBuf>> {
-    if width < 16 || !width.is_multiple_of(2) {
-        bail!("--width {width}: expected an even number of pixels, at least 16");
-    }
+    check_width(width)?;
     // Every sun is checked before the first file is written.
     for s in steps {
         #[allow(clippy::cast_possible_truncation)]
         let sun = sky_core::Sun::new(s.sun_zenith as f32, s.sun_azimuth as f32)
-            .map_err(|e| anyhow::anyhow!("{e}"))?;
-        NeuralSky::new(weights, sun, 0.0).map_err(|e| {
-            anyhow::anyhow!(
-                "the sun at {:.1} min (zenith {:.2} deg) is outside the weights' trained range: {e}",
-                s.minutes,
-                s.sun_zenith.to_degrees()
-            )
-        })?;
+            .map_err(|e| outside_the_weights(s, e))?;
+        NeuralSky::new(weights, sun, 0.0).map_err(|e| outside_the_weights(s, e))?;
     }
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     let bar = if progress {

@@ -20,13 +20,14 @@ use std::f64::consts::{PI, TAU};
 use std::fmt::Write as _;
 use std::path::Path;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
 use sky_core::Vec3;
 use sky_core::geom::{self, Equirect, Extent};
 
 use super::manifest::{MANIFEST, UnixTime};
+use crate::args::ParamError;
 use crate::image_io::{self, RgbImage};
 use crate::sources::{self, ModelKind, SkyParams};
 
@@ -99,7 +100,7 @@ pub struct SynthFrame {
 /// When the site or date is invalid, or fewer than two frames result.
 pub fn times(config: &SynthConfig) -> Result<Vec<(UnixTime, sky_core::solar::SunPosition)>> {
     let site = sky_core::solar::Site::new(config.latitude, config.longitude, 0.0)
-        .map_err(|e| anyhow::anyhow!("--lat/--lon: {e}"))?;
+        .map_err(|e| ParamError(format!("--lat/--lon: {e}")))?;
     let (y, m, d) = config.date;
     let midnight = UnixTime::from_civil(y, m, d, 0, 0, 0.0);
     let step = f64::from(config.step_minutes) * 60.0;
@@ -114,13 +115,14 @@ pub fn times(config: &SynthConfig) -> Result<Vec<(UnixTime, sky_core::solar::Sun
             out.push((time, sun));
         } else if config.start_minutes.is_some() || !out.is_empty() {
             if config.frames.is_some_and(|n| out.len() < n) {
-                bail!(
-                    "the sun is only {:.1} degrees high at {} (at least {} wanted): fewer than {} frames fit",
+                return Err(ParamError(format!(
+                    "--frames {}: the sun is only {:.1} deg high at {} (--min-elevation {} deg): fewer frames fit",
+                    config.frames.unwrap_or(0),
                     sun.elevation_deg(),
                     time.rfc3339(),
                     config.min_elevation_deg,
-                    config.frames.unwrap_or(0)
-                );
+                ))
+                .into());
             }
             break;
         }
@@ -130,10 +132,11 @@ pub fn times(config: &SynthConfig) -> Result<Vec<(UnixTime, sky_core::solar::Sun
         t += step;
     }
     if out.len() < 2 {
-        bail!(
-            "fewer than two frames with the sun at least {} degrees high",
+        return Err(ParamError(format!(
+            "--min-elevation {} deg: fewer than two frames of the day have the sun that high",
             config.min_elevation_deg
-        );
+        ))
+        .into());
     }
     Ok(out)
 }
@@ -188,11 +191,17 @@ impl Skyline {
 /// When a parameter is out of range or a file cannot be written.
 pub fn synthesize(config: &SynthConfig, out: &Path, progress: bool) -> Result<Vec<SynthFrame>> {
     if config.width < 16 || !config.width.is_multiple_of(2) || config.width > 16384 {
-        bail!(
+        return Err(ParamError(format!(
             "--width {}: expected an even number of pixels in [16, 16384]",
             config.width
-        );
+        ))
+        .into());
     }
+    // The sky's parameters, before the folder is made.
+    sources::build(
+        ModelKind::Hosek,
+        &SkyParams::for_model(ModelKind::Hosek, 0.0, 0.0, config.turbidity),
+    )?;
     let times = times(config)?;
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     let (w, h) = (config.width, config.width / 2);

@@ -1,17 +1,20 @@
 //! `sky-train captures …`: the command line of captured skies.
 
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::Result;
 use clap::{Args, Subcommand};
 
-use crate::args::{clock, date, duration_minutes, seconds};
+use crate::args::{
+    ParamError, clock, date, duration_minutes, finite, latitude, longitude, seconds,
+};
 use crate::captures::load::{self, LoadConfig};
 use crate::captures::synthesize::{self, SynthConfig};
 use crate::captures::{Sequence, interpolate, manifest, validate};
 use crate::export::{self, TrainedOn};
+use crate::output_path::{self, Folder};
 
 /// The `captures` subcommands.
 #[derive(Subcommand)]
@@ -87,11 +90,11 @@ pub struct SynthesizeArgs {
     /// The folder to write the frames and `captures.toml` to (created if missing).
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
-    /// Latitude in degrees, north positive.
-    #[arg(long, default_value_t = 48.21, allow_negative_numbers = true)]
+    /// Latitude in degrees, north positive (-90 to 90).
+    #[arg(long, default_value_t = 48.21, allow_negative_numbers = true, value_parser = latitude)]
     pub lat: f64,
-    /// Longitude in degrees, east positive.
-    #[arg(long, default_value_t = 16.37, allow_negative_numbers = true)]
+    /// Longitude in degrees, east positive (-180 to 180).
+    #[arg(long, default_value_t = 16.37, allow_negative_numbers = true, value_parser = longitude)]
     pub lon: f64,
     /// The UTC date, YYYY-MM-DD.
     #[arg(long, default_value = "2026-06-21", value_parser = date)]
@@ -112,7 +115,7 @@ pub struct SynthesizeArgs {
     #[arg(long, default_value_t = 3.0)]
     pub turbidity: f64,
     /// Lowest sun elevation of a frame in degrees (the skyline reaches 8).
-    #[arg(long, default_value_t = 12.0)]
+    #[arg(long, default_value_t = 12.0, allow_negative_numbers = true, value_parser = finite)]
     pub min_elevation: f64,
     /// Random seed (exposure, noise, skyline, camera offsets).
     #[arg(long, default_value_t = 1)]
@@ -150,8 +153,12 @@ pub fn run(command: &CapturesCommand, output: &mut dyn Write) -> Result<()> {
     match command {
         CapturesCommand::Train(args) => train(args, output),
         CapturesCommand::Interpolate(args) => {
+            output_path::folder("--out", &args.out)?;
+            if let Some(w) = args.width {
+                interpolate::check_width(w as usize)?;
+            }
             let started = Instant::now();
-            let weights = export::read_weights::<12>(&args.weights)?;
+            let weights = super::weight_file("--weights", &args.weights)?;
             let seq = load_for_suns(&args.input)?;
             let loaded = started.elapsed().as_secs_f64();
             let steps = interpolate::steps(&seq, args.step, args.interval)?;
@@ -170,6 +177,7 @@ pub fn run(command: &CapturesCommand, output: &mut dyn Write) -> Result<()> {
             Ok(())
         }
         CapturesCommand::Synthesize(args) => {
+            output_path::folder("--out", &args.out)?;
             let config = SynthConfig {
                 latitude: args.lat,
                 longitude: args.lon,
@@ -197,7 +205,8 @@ pub fn run(command: &CapturesCommand, output: &mut dyn Write) -> Result<()> {
             Ok(())
         }
         CapturesCommand::Strip(args) => {
-            let weights = export::read_weights::<12>(&args.weights)?;
+            output_path::file_ending("--out", &args.out, &["png"])?;
+            let weights = super::weight_file("--weights", &args.weights)?;
             let seq = load_for_suns(&args.input)?;
             let image = interpolate::strip(
                 &seq,
@@ -214,8 +223,8 @@ pub fn run(command: &CapturesCommand, output: &mut dyn Write) -> Result<()> {
 }
 
 /// The captures of `dir` read for their suns only (few samples).
-fn load_for_suns(dir: &std::path::Path) -> Result<Sequence> {
-    load::load(
+fn load_for_suns(dir: &Path) -> Result<Sequence, ParamError> {
+    load_input(
         dir,
         &LoadConfig {
             samples_per_frame: 64,
@@ -224,14 +233,28 @@ fn load_for_suns(dir: &std::path::Path) -> Result<Sequence> {
     )
 }
 
+/// The captures of `--input` `dir`: a folder, manifest or frame that cannot be read or is
+/// refused is bad input (exit status 2).
+fn load_input(dir: &Path, config: &LoadConfig) -> Result<Sequence, ParamError> {
+    load::load(dir, config).map_err(|e| ParamError(format!("--input {e:#}")))
+}
+
 fn train(args: &TrainArgs, output: &mut dyn Write) -> Result<()> {
+    if !args.input.is_dir() {
+        return Err(ParamError(format!("--input {}: not a folder", args.input.display())).into());
+    }
+    let path = args
+        .out
+        .clone()
+        .unwrap_or_else(|| args.input.join("sky.weights"));
+    output_path::file("--out", &path, Folder::Existing)?;
     let started = Instant::now();
     let load_config = LoadConfig {
         samples_per_frame: args.samples as usize,
         seed: u64::from(args.seed),
         ..LoadConfig::default()
     };
-    let seq = load::load(&args.input, &load_config)?;
+    let seq = load_input(&args.input, &load_config)?;
     let loaded = started.elapsed().as_secs_f64();
     let examples: usize = seq.frames.iter().map(|f| f.views.len()).sum();
     writeln!(
@@ -284,10 +307,6 @@ fn train(args: &TrainArgs, output: &mut dyn Write) -> Result<()> {
         ),
     };
     let weights = export::to_weights_of::<12>(&trained, &trained_on, args.seed)?;
-    let path = args
-        .out
-        .clone()
-        .unwrap_or_else(|| args.input.join("sky.weights"));
     export::write_weights(&path, &weights)?;
     writeln!(output, "wrote {}", path.display())?;
     if !args.no_cross_validation {

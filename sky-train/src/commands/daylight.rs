@@ -10,6 +10,7 @@ use clap::Args;
 
 use super::AtmosphereArgs;
 use crate::args::{ParamError, radians};
+use crate::output_path;
 use crate::physical::photometry::Colorimetry;
 use crate::physical::solar;
 use crate::sources::ModelKind;
@@ -280,10 +281,10 @@ pub fn run(args: &DaylightArgs, output: &mut dyn Write) -> Result<()> {
     let list = elevation_list(args.elevations);
     let plotting = args.plot_illuminance.is_some() || args.plot_cct.is_some();
     if let Some(p) = &args.plot_illuminance {
-        crate::args::check_output("--plot-illuminance", p, "svg")?;
+        output_path::file_ending("--plot-illuminance", p, &["svg"])?;
     }
     if let Some(p) = &args.plot_cct {
-        crate::args::check_output("--plot-cct", p, "svg")?;
+        output_path::file_ending("--plot-cct", p, &["svg"])?;
     }
     let rows = match args.model {
         ModelKind::Physical => physical_rows(args, &list)?,

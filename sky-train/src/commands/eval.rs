@@ -3,11 +3,12 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use clap::Args;
 use sky_core::neural::{NeuralWeights, pretrained};
 
-use crate::export;
+use crate::args::ParamError;
+use crate::output_path;
 use crate::sources::{self, ModelKind, SkyParams};
 
 /// `eval`'s arguments.
@@ -30,20 +31,27 @@ pub struct EvalArgs {
 /// # Errors
 /// A bad model or weight file, a failed write.
 pub fn run(args: &EvalArgs, output: &mut dyn Write) -> Result<()> {
+    output_path::folder("--out", &args.out)?;
     let weights: NeuralWeights<12> = match (args.model, &args.weights) {
         (ModelKind::NeuralPreetham, None) => pretrained::PREETHAM,
         (ModelKind::NeuralHosek, None) => pretrained::HOSEK,
-        (ModelKind::Neural, Some(path)) => export::read_weights::<12>(path)?,
-        (ModelKind::Neural, None) => bail!("--model neural needs --weights FILE"),
-        (model, _) => bail!(
+        (ModelKind::Neural, Some(path)) => super::weight_file("--weights", path)?,
+        (ModelKind::Neural, None) => refuse("--model neural needs --weights FILE".into())?,
+        (ModelKind::NeuralPreetham | ModelKind::NeuralHosek, Some(_)) => refuse(format!(
+            "--weights applies to --model neural only, not --model {}",
+            args.model
+        ))?,
+        (model, _) => refuse(format!(
             "--model {model}: eval takes neural-preetham, neural-hosek or neural --weights FILE"
-        ),
+        ))?,
     };
     let reference = match weights.source_name() {
         "preetham" => ModelKind::Preetham,
         "hosek" => ModelKind::Hosek,
         "aoas" => ModelKind::Aoas,
-        other => bail!("the weights were trained on `{other}`, which eval has no reference for"),
+        other => refuse(format!(
+            "--weights: the weights were trained on `{other}`, which eval has no reference for (preetham, hosek, aoas)"
+        ))?,
     };
     let network = |p: &SkyParams| -> Result<Box<dyn sources::SkySource>> {
         Ok(Box::new(sources::Neural::new(&weights, args.model, p)?))
@@ -64,4 +72,9 @@ pub fn run(args: &EvalArgs, output: &mut dyn Write) -> Result<()> {
     crate::eval::write_comparison(&path, reference, &*network(&params)?, &params, 512)?;
     writeln!(output, "wrote {}", path.display())?;
     Ok(())
+}
+
+/// Bad arguments: `message` as a [`ParamError`].
+fn refuse<T>(message: String) -> Result<T, ParamError> {
+    Err(ParamError(message))
 }

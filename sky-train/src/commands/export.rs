@@ -9,6 +9,7 @@ use clap::{Args, ValueEnum};
 
 use super::SkyArgs;
 use crate::args::ParamError;
+use crate::output_path::{self, Folder};
 use crate::sources::{ModelKind, SkyParams};
 use crate::{export, image_io};
 
@@ -65,6 +66,7 @@ pub enum ExportFormat {
 /// A missing or inapplicable argument (a [`ParamError`]), an unreadable weight file, weights
 /// that do not fit Q7.24, a failed write.
 pub fn run(args: &ExportArgs, output: &mut dyn Write) -> Result<()> {
+    output_path::file("--out", &args.out, Folder::Existing)?;
     let text = match args.format {
         ExportFormat::F32 | ExportFormat::Fixed => {
             let (Some(path), Some(name)) = (&args.sky.weights, &args.name) else {
@@ -73,7 +75,7 @@ pub fn run(args: &ExportArgs, output: &mut dyn Write) -> Result<()> {
                 )
                 .into());
             };
-            let weights = export::read_weights::<12>(path)?;
+            let weights = super::weight_file("--weights", path)?;
             if matches!(args.format, ExportFormat::F32) {
                 export::pretrained_source(&weights, name, path)?
             } else {

@@ -4,10 +4,12 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use clap::Args;
 
+use crate::args::ParamError;
 use crate::image_io;
+use crate::output_path::{self, Folder};
 use crate::sh::{Degrees, FitConfig, ShFit, export, report};
 use crate::sources::ModelKind;
 
@@ -56,7 +58,20 @@ pub struct FitShArgs {
 /// `--model sh`, a failed fit or write.
 pub fn run(args: &FitShArgs, output: &mut dyn Write) -> Result<()> {
     if args.model == ModelKind::Sh {
-        bail!("--model sh is the fitted representation itself; fit the model it approximates");
+        return Err(ParamError(
+            "--model sh is the fitted representation itself; fit the model it approximates".into(),
+        )
+        .into());
+    }
+    let out = args.out.clone().unwrap_or_else(|| {
+        PathBuf::from("out/sh").join(format!(
+            "{}_table.rs",
+            args.model.to_string().replace('-', "_")
+        ))
+    });
+    output_path::file("--out", &out, Folder::Created)?;
+    if let Some(dir) = &args.report {
+        output_path::folder("--report", dir)?;
     }
     let config = FitConfig {
         low: Degrees {
@@ -72,14 +87,9 @@ pub fn run(args: &FitShArgs, output: &mut dyn Write) -> Result<()> {
         turbidity: [args.turbidity_min, args.turbidity_max],
         ..FitConfig::shipped(args.model)
     };
+    config.validate()?;
     let start = std::time::Instant::now();
     let fit = ShFit::run(&config)?;
-    let out = args.out.clone().unwrap_or_else(|| {
-        PathBuf::from("out/sh").join(format!(
-            "{}_table.rs",
-            args.model.to_string().replace('-', "_")
-        ))
-    });
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }

@@ -30,6 +30,7 @@ pub struct GalleryArgs {
 /// # Errors
 /// A folder that cannot be created, a failed write.
 pub fn run(args: &GalleryArgs, output: &mut dyn Write) -> Result<()> {
+    crate::output_path::folder("--out", &args.out)?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create --out {}", args.out.display()))?;
     let image = ImageArgs {

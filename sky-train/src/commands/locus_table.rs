@@ -20,8 +20,9 @@ pub struct LocusTableArgs {
 /// Writes the table's Rust source to `--out`.
 ///
 /// # Errors
-/// A failed write.
+/// An `--out` that cannot be written (a [`crate::args::ParamError`]), a failed write.
 pub fn run(args: &LocusTableArgs, output: &mut dyn Write) -> Result<()> {
+    crate::output_path::file("--out", &args.out, crate::output_path::Folder::Existing)?;
     image_io::write_text(&args.out, &planckian::locus_table_source())?;
     writeln!(output, "wrote {}", args.out.display())?;
     Ok(())

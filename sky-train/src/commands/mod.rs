@@ -13,7 +13,6 @@ pub mod daylight_tables;
 pub mod eval;
 pub mod export;
 pub mod fit_sh;
-pub mod fuzz_weights;
 pub mod gallery;
 pub mod locus_table;
 pub mod render;
@@ -24,11 +23,12 @@ pub mod size_study;
 pub mod spectrum;
 pub mod train;
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use sky_core::geom::{Equirect, Extent};
+use sky_core::neural::NeuralWeights;
 
 use crate::args::{elevation, finite, latitude, longitude, non_negative};
 use crate::sources::{self, ModelKind, ParamError, SkyParams};
@@ -149,6 +149,12 @@ impl AtmosphereArgs {
     }
 }
 
+/// The 6-12-3 weight file given to `flag`, read and decoded: a file that cannot be read or
+/// does not decode is bad input (exit status 2), named by the flag.
+fn weight_file(flag: &str, path: &Path) -> Result<NeuralWeights<12>, ParamError> {
+    crate::export::read_weights::<12>(path).map_err(|e| ParamError(format!("{flag} {e:#}")))
+}
+
 /// A sun's zenith and azimuth in degrees and the day of the year, each when known.
 type SunAndDay = (Option<f64>, Option<f64>, Option<u32>);
 
@@ -157,8 +163,7 @@ impl SkyArgs {
     fn source(&self) -> Result<Box<dyn sources::SkySource>> {
         match (&self.weights, self.model) {
             (Some(path), ModelKind::Neural) => {
-                let weights = crate::export::read_weights::<12>(path)
-                    .map_err(|e| ParamError(format!("--weights {e:#}")))?;
+                let weights = weight_file("--weights", path)?;
                 Ok(Box::new(sources::Neural::new(
                     &weights,
                     ModelKind::Neural,

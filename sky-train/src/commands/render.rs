@@ -1,14 +1,14 @@
 //! `sky-train render`: an equirectangular image of one sky, OpenEXR or PNG.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
 
 use super::{ImageArgs, SkyArgs};
 use crate::image_io::{self, Format};
+use crate::output_path::{self, Folder};
 use crate::render;
-use crate::sources::SkySource;
 
 /// `render`'s arguments.
 #[derive(Args)]
@@ -22,27 +22,26 @@ pub struct RenderArgs {
     out: PathBuf,
 }
 
-/// Renders the sky of `args` to its `--out` file and names both on stderr.
+/// Renders the sky of `args` to its `--out` file and names both on stderr. The file's type and
+/// folder are checked before the sky is built (the physical model's precomputation takes a
+/// minute).
 ///
 /// # Errors
-/// Bad parameters as a [`crate::args::ParamError`], an unknown file type, a failed write.
+/// Bad parameters or an `--out` that cannot be written as a [`crate::args::ParamError`], a
+/// failed write.
 pub fn run(args: &RenderArgs) -> Result<()> {
+    let format = Format::from_path(&args.out)?;
+    output_path::file("--out", &args.out, Folder::Existing)?;
+    let grid = args.image.grid()?;
     let source = args.sky.source()?;
-    let path = render_to(&*source, &args.image, &args.out)?;
-    eprintln!("{}: {}", source.describe(), path.display());
-    Ok(())
-}
-
-fn render_to(source: &dyn SkySource, image: &ImageArgs, out: &Path) -> Result<PathBuf> {
-    let format = Format::from_path(out)?;
-    let grid = image.grid()?;
-    let img = render::equirect(source, &grid);
+    let img = render::equirect(&*source, &grid);
     match format {
-        Format::Exr => image_io::write_exr(out, &img)?,
+        Format::Exr => image_io::write_exr(&args.out, &img)?,
         Format::Png => {
-            let scale = render::auto_exposure(&img, &grid) * image.exposure.exp2();
-            image_io::write_png(out, &img, scale)?;
+            let scale = render::auto_exposure(&img, &grid) * args.image.exposure.exp2();
+            image_io::write_png(&args.out, &img, scale)?;
         }
     }
-    Ok(out.to_path_buf())
+    eprintln!("{}: {}", source.describe(), args.out.display());
+    Ok(())
 }

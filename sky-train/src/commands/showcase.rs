@@ -30,6 +30,7 @@ pub struct ShowcaseArgs {
 /// # Errors
 /// A folder that cannot be created, a failed training or write.
 pub fn run(args: &ShowcaseArgs, output: &mut dyn Write) -> Result<()> {
+    crate::output_path::folder("--out", &args.out)?;
     gallery::run(
         &GalleryArgs {
             out: args.out.clone(),

@@ -2,10 +2,10 @@
 
 use std::io::Write;
 
-use anyhow::{Result, bail};
+use anyhow::Result;
 use clap::Args;
 
-use crate::args::{irradiance_weight, seconds};
+use crate::args::{ParamError, irradiance_weight, seconds};
 use crate::sources::ModelKind;
 
 /// `size-study`'s arguments.
@@ -34,10 +34,11 @@ pub struct SizeStudyArgs {
 /// A model other than preetham or hosek, a bad layout, a failed training or write.
 pub fn run(args: &SizeStudyArgs, output: &mut dyn Write) -> Result<()> {
     if !matches!(args.model, ModelKind::Preetham | ModelKind::Hosek) {
-        bail!(
+        return Err(ParamError(format!(
             "--model {}: the size study trains on preetham or hosek",
             args.model
-        );
+        ))
+        .into());
     }
     let layouts = args
         .layouts
@@ -46,9 +47,11 @@ pub fn run(args: &SizeStudyArgs, output: &mut dyn Write) -> Result<()> {
             l.split(',')
                 .map(|h| h.trim().parse::<usize>())
                 .collect::<Result<Vec<_>, _>>()
-                .map_err(|_| anyhow::anyhow!("--layouts `{l}`: expected sizes like 12 or 12,12"))
+                .map_err(|_| {
+                    ParamError(format!("--layouts `{l}`: expected sizes like 12 or 12,12"))
+                })
         })
-        .collect::<Result<Vec<_>>>()?;
+        .collect::<Result<Vec<_>, _>>()?;
     let rows = crate::study::run(
         args.model,
         &layouts,

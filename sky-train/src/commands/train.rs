@@ -3,11 +3,12 @@
 use std::io::Write;
 use std::path::PathBuf;
 
-use anyhow::{Result, bail};
+use anyhow::Result;
 use clap::Args;
 
-use crate::args::{ParamError, irradiance_weight, seconds};
+use crate::args::{ParamError, irradiance_weight, non_negative, seconds};
 use crate::export;
+use crate::output_path::{self, Folder};
 use crate::sources::ModelKind;
 use crate::train::{self, TrainConfig};
 
@@ -33,7 +34,7 @@ pub struct TrainArgs {
     #[arg(long, default_value_t = 400, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     pub max_iterations: u32,
     /// Stop once the validation NRMSE reaches this (0 = train to the budget or convergence).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, value_parser = non_negative)]
     pub target_nrmse: f64,
     /// Checkpoint file: resumed from when it exists, rewritten after every iteration.
     #[arg(long, value_name = "FILE")]
@@ -73,15 +74,49 @@ fn strata(s: &str) -> Result<(usize, usize), String> {
     }
 }
 
-/// Trains as `args` say, reports the validation and test NRMSE on `output`, and writes the
-/// weight file of `--out`.
-///
-/// # Errors
-/// Bad parameters as a [`ParamError`], a failed training or write.
-pub fn run(args: &TrainArgs, output: &mut dyn Write) -> Result<()> {
+/// The training `args` ask for, checked: a model with skies to learn, turbidities in its
+/// range, a network the optimiser can train and `--out` can hold, a checkpoint and initial
+/// weights of that network, output files that can be written.
+fn config(args: &TrainArgs) -> Result<TrainConfig> {
+    if matches!(
+        args.model,
+        ModelKind::Neural | ModelKind::Cie | ModelKind::Perez
+    ) {
+        return Err(ParamError(format!(
+            "--model {}: train learns preetham, hosek, neural-preetham, neural-hosek, aoas, sh or physical (cie and perez need a measurement, neural a weight file)",
+            args.model
+        ))
+        .into());
+    }
     let mut config = TrainConfig::new(args.model);
     config.hidden = args.hidden.iter().map(|&h| usize::from(h)).collect();
     config.optimizer = args.optimizer;
+    config.check()?;
+    if config.hidden != [12] {
+        let layout: Vec<String> = args.hidden.iter().map(ToString::to_string).collect();
+        let layout = layout.join(",");
+        for (flag, given) in [
+            ("--out", args.out.is_some()),
+            ("--init-weights", args.init_weights.is_some()),
+        ] {
+            if given {
+                return Err(ParamError(format!(
+                    "{flag} holds a 6-12-3 network (the weight file's shape), and --hidden {layout} trains another: leave out {flag}, or train --hidden 12"
+                ))
+                .into());
+            }
+        }
+    }
+    if let Some(path) = &args.out {
+        output_path::file("--out", path, Folder::Existing)?;
+    }
+    if let Some(path) = &args.checkpoint {
+        output_path::file("--checkpoint", path, Folder::Existing)?;
+        let mut sizes = vec![6];
+        sizes.extend(&config.hidden);
+        sizes.push(3);
+        train::checkpoint::resume(path, &sizes)?;
+    }
     config.seed = u64::from(args.seed);
     config.sampling.seed = u64::from(args.seed);
     if let Some(t) = &args.turbidities {
@@ -103,11 +138,27 @@ pub fn run(args: &TrainArgs, output: &mut dyn Write) -> Result<()> {
     config.target_nrmse = args.target_nrmse;
     config.checkpoint.clone_from(&args.checkpoint);
     if let Some(path) = &args.init_weights {
-        config.init = Some(export::from_weights(&export::read_weights::<12>(path)?)?);
+        let weights = super::weight_file("--init-weights", path)?;
+        config.init = Some(
+            export::from_weights(&weights)
+                .map_err(|e| ParamError(format!("--init-weights {}: {e:#}", path.display())))?,
+        );
     } else {
         // Timed from scratch only.
         config.milestone = train::Milestone::paper(args.model)?;
     }
+    Ok(config)
+}
+
+/// Trains as `args` say, reports the validation and test NRMSE on `output`, and writes the
+/// weight file of `--out`. Every argument, the output files and the network's size are checked
+/// before the training set is sampled.
+///
+/// # Errors
+/// Bad parameters, input files or output paths as a [`ParamError`], a failed training or
+/// write.
+pub fn run(args: &TrainArgs, output: &mut dyn Write) -> Result<()> {
+    let config = config(args)?;
     let started = std::time::Instant::now();
     let set = train::dataset::DataSet::training(args.model, &config.sampling)?;
     let sampling = started.elapsed().as_secs_f64();
@@ -136,16 +187,10 @@ pub fn run(args: &TrainArgs, output: &mut dyn Write) -> Result<()> {
         trained.mean_nrmse(&test)
     )?;
     if let Some(path) = &args.out {
-        if config.hidden == [12] {
-            let weights = export::to_weights::<12>(&trained, args.model, args.seed)?;
-            export::write_weights(path, &weights)?;
-            writeln!(output, "wrote {}", path.display())?;
-        } else {
-            bail!(
-                "--out writes 6-12-3 networks only; this run trained {:?}",
-                trained.net.sizes
-            );
-        }
+        // A 6-12-3 network: checked before training.
+        let weights = export::to_weights::<12>(&trained, args.model, args.seed)?;
+        export::write_weights(path, &weights)?;
+        writeln!(output, "wrote {}", path.display())?;
     }
     Ok(())
 }

@@ -11,9 +11,10 @@ pub mod fit;
 pub mod projection;
 pub mod report;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use rayon::prelude::*;
 
+use crate::args::ParamError;
 use crate::sources::{self, ModelKind, SkyParams, SkySource};
 use fit::{LeastSquares, Matrix};
 use projection::{BANDS, COEFFICIENTS, Coefficients, Integrator, index};
@@ -123,27 +124,76 @@ impl FitConfig {
         if l < LOW_BANDS { self.low } else { self.high }
     }
 
-    /// Checks the configuration.
+    /// The most Chebyshev sample points in each parameter (ten times the paper's degrees: the
+    /// fit projects nodes_theta × nodes_turbidity skies).
+    pub const MAX_NODES: usize = 200;
+
+    /// Checks the configuration (in the command line's terms: `fit-sh` gives these flags).
     ///
     /// # Errors
-    /// When a degree is above 30, the points are fewer than the coefficients, or a range is
-    /// empty.
-    pub fn validate(&self) -> Result<()> {
-        for (name, d, n) in [
-            ("--degree-theta", self.low.theta, self.nodes_theta),
-            ("--degree-turbidity", self.low.tau, self.nodes_tau),
-            ("--degree-theta-high", self.high.theta, self.nodes_theta),
-            ("--degree-turbidity-high", self.high.tau, self.nodes_tau),
+    /// A [`ParamError`] when a degree is above 30, the points are fewer than the coefficients
+    /// or more than [`MAX_NODES`](Self::MAX_NODES), a range is empty, or the turbidities lie
+    /// outside the model's.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        let err = |m: String| Err(ParamError(m));
+        for (flag, n) in [
+            ("--nodes-theta", self.nodes_theta),
+            ("--nodes-turbidity", self.nodes_tau),
         ] {
-            if d > 30 {
-                bail!("{name} {d} is outside the valid range [0, 30]");
-            }
-            if n <= d {
-                bail!("{n} sample points cannot determine a polynomial of {name} {d}");
+            if n > Self::MAX_NODES {
+                return err(format!(
+                    "{flag} {n} is outside the valid range [1, {}]",
+                    Self::MAX_NODES
+                ));
             }
         }
-        if !(self.sun_zenith[0] < self.sun_zenith[1] && self.turbidity[0] < self.turbidity[1]) {
-            bail!("the fitted ranges must not be empty");
+        for (name, d, nodes, n) in [
+            (
+                "--degree-theta",
+                self.low.theta,
+                "--nodes-theta",
+                self.nodes_theta,
+            ),
+            (
+                "--degree-turbidity",
+                self.low.tau,
+                "--nodes-turbidity",
+                self.nodes_tau,
+            ),
+            (
+                "--degree-theta-high",
+                self.high.theta,
+                "--nodes-theta",
+                self.nodes_theta,
+            ),
+            (
+                "--degree-turbidity-high",
+                self.high.tau,
+                "--nodes-turbidity",
+                self.nodes_tau,
+            ),
+        ] {
+            if d > 30 {
+                return err(format!("{name} {d} is outside the valid range [0, 30]"));
+            }
+            if n <= d {
+                return err(format!(
+                    "{nodes} {n}: too few sample points for a polynomial of {name} {d} (at least {})",
+                    d + 1
+                ));
+            }
+        }
+        let (lo, hi) = self.model.turbidity_range();
+        let [t0, t1] = self.turbidity.map(f64::from);
+        let inside = |t: f64| !self.model.uses_turbidity() || (lo..=hi).contains(&t);
+        if !(inside(t0) && inside(t1) && t0 < t1) {
+            return err(format!(
+                "--turbidity-min {} and --turbidity-max {}: expected min < max, both in [{lo}, {hi}] for --model {}",
+                self.turbidity[0], self.turbidity[1], self.model
+            ));
+        }
+        if self.sun_zenith[0].partial_cmp(&self.sun_zenith[1]) != Some(std::cmp::Ordering::Less) {
+            return err("the fitted sun zeniths must not be an empty range".into());
         }
         Ok(())
     }

@@ -305,12 +305,20 @@ pub(crate) fn param_error(kind: ModelKind, e: sky_core::SkyError) -> ParamError 
     use sky_core::SkyError as E;
     let (lo, hi) = kind.sun_zenith_range_deg();
     let msg = match e {
+        // The model's range narrowed by the one the sky refused the sun by (a weight file's
+        // own domain for `neural`).
         E::OutOfRange {
             parameter: "sun zenith [rad]",
             value,
-            ..
-        }
-        | E::SunBelowHorizon { zenith: value } => format!(
+            min,
+            max,
+        } => format!(
+            "--sun-zenith {} deg is outside the valid range [{}, {}] deg for --model {kind}",
+            value.to_degrees(),
+            lo.max(centi_degrees(min)),
+            hi.min(centi_degrees(max))
+        ),
+        E::SunBelowHorizon { zenith: value } => format!(
             "--sun-zenith {} deg is outside the valid range [{lo}, {hi}] deg for --model {kind}",
             value.to_degrees()
         ),
@@ -320,6 +328,11 @@ pub(crate) fn param_error(kind: ModelKind, e: sky_core::SkyError) -> ParamError 
         ),
     };
     ParamError(msg)
+}
+
+/// An angle in radians in degrees to 0.01 (the f32 radians of 60 deg are 59.999996 deg).
+fn centi_degrees(radians: f32) -> f64 {
+    (f64::from(radians).to_degrees() * 100.0).round() / 100.0
 }
 
 fn flag(parameter: &str) -> &str {

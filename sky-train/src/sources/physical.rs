@@ -90,6 +90,8 @@ impl PhysicalOptions {
     ) -> Result<Arc<crate::physical::PhysicalAtmosphere>, ParamError> {
         let atm = self.atmosphere(turbidity)?;
         let dir = self.cache_dir.clone().unwrap_or_else(cache::default_dir);
+        // The precomputed atmosphere is written there after a minute's work.
+        crate::output_path::folder("--cache-dir", &dir)?;
         std::fs::create_dir_all(&dir).map_err(|e| {
             ParamError(format!(
                 "--cache-dir {}: cannot create the folder ({e}); set --cache-dir or ${}",

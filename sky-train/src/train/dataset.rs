@@ -50,15 +50,19 @@ pub struct Sampling {
 }
 
 impl Sampling {
-    /// Seed 000's sampling for `model`: turbidity 2..6 (Preetham) or 1..10 (Hosek) in steps of
-    /// 1, 20 sun zeniths, 10 × 20 stratified views.
+    /// Seed 000's sampling for `model`: its turbidity range in steps of 1 and its upper end
+    /// (2..6 for Preetham, 1..10 for Hosek; 2.5, 3.5, 4.5, 5.5, 6 for the SH tables' 2.5..6),
+    /// 20 sun zeniths, 10 × 20 stratified views.
     #[must_use]
     pub fn paper(model: ModelKind) -> Self {
         let (lo, hi) = model.turbidity_range();
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        let n = (hi - lo).round() as u32 + 1;
+        let mut turbidities: Vec<f64> = (0..=MAX_DEFAULT_TURBIDITIES)
+            .map(|i| lo + f64::from(i))
+            .take_while(|t| *t < hi)
+            .collect();
+        turbidities.push(hi);
         Self {
-            turbidities: (0..n).map(|i| lo + f64::from(i)).collect(),
+            turbidities,
             sun_zeniths: 20,
             view_zeniths: 10,
             view_azimuths: 20,
@@ -66,6 +70,10 @@ impl Sampling {
         }
     }
 }
+
+/// At most this many turbidities besides the upper end in [`Sampling::paper`] (`train`
+/// refuses the one model without a finite range, `neural`, before sampling).
+const MAX_DEFAULT_TURBIDITIES: u32 = 100;
 
 /// `n` values uniform over [0, π/2], both ends included.
 #[must_use]

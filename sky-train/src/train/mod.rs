@@ -10,7 +10,7 @@ pub mod net;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use indicatif::{ProgressBar, ProgressStyle};
 use rand::SeedableRng;
 use sky_core::Vec3;
@@ -485,11 +485,8 @@ pub fn train<V: Validation + ?Sized>(
     let bar = progress_bar(config);
 
     let resumed = match &config.checkpoint {
-        Some(path) if path.exists() => Some(
-            checkpoint::read(path, &sizes)
-                .with_context(|| format!("cannot resume from {}", path.display()))?,
-        ),
-        _ => None,
+        Some(path) => checkpoint::resume(path, &sizes)?,
+        None => None,
     };
     let (mut net, first_iteration, resumed_lambda) = match resumed {
         Some(r) => (r.net, r.iteration, r.lambda),
@@ -536,7 +533,7 @@ pub fn train<V: Validation + ?Sized>(
                 moved
             }
             Optimizer::Backprop => {
-                backprop::epoch(&mut net, &mut momentum, set, &scaling, &mut rng);
+                backprop::epoch(&mut net, &mut momentum, set, &scaling, &mut rng, deadline);
                 true
             }
         };
@@ -653,6 +650,7 @@ pub mod checkpoint {
     use anyhow::{Result, bail};
 
     use super::Net;
+    use crate::args::ParamError;
     use crate::image_io::write_text;
 
     /// What a checkpoint holds.
@@ -684,12 +682,39 @@ pub mod checkpoint {
         )
     }
 
+    /// The checkpoint to resume from at `path` (`--checkpoint`), `None` when there is none yet.
+    ///
+    /// # Errors
+    /// A [`ParamError`] (bad input, exit status 2) naming `--checkpoint` when the file cannot
+    /// be read or is not a checkpoint of a network with `sizes`.
+    pub fn resume(path: &Path, sizes: &[usize]) -> Result<Option<Resume>, ParamError> {
+        if !path.exists() {
+            return Ok(None);
+        }
+        read(path, sizes).map(Some).map_err(|e| {
+            ParamError(format!(
+                "--checkpoint {}: cannot resume: {e:#}",
+                path.display()
+            ))
+        })
+    }
+
     /// Reads a checkpoint of a network with `sizes` (version 2, or version 1 without λ).
     ///
     /// # Errors
-    /// When the file cannot be read or is not a checkpoint of that shape.
+    /// When the file cannot be read, is longer than a checkpoint of that shape can be, or is
+    /// not one.
     pub fn read(path: &Path, sizes: &[usize]) -> Result<Resume> {
-        let text = std::fs::read_to_string(path)?;
+        use std::io::Read;
+        // The header, then one parameter a line as `{:e}` writes an f64 (at most 24 bytes).
+        let limit = 256 + 32 * Net::param_count(sizes) as u64;
+        let mut text = String::new();
+        std::fs::File::open(path)?
+            .take(limit + 1)
+            .read_to_string(&mut text)?;
+        if text.len() as u64 > limit {
+            bail!("longer than a checkpoint of a {sizes:?} network ({limit} bytes at most)");
+        }
         let mut lines = text.lines().peekable();
         let version = match lines.next() {
             Some("sky-train checkpoint 1") => 1,
