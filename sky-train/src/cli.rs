@@ -9,8 +9,8 @@ use clap::{Parser, Subcommand};
 
 use crate::commands::{
     self, SkyArgs, bench::BenchArgs, daylight::DaylightArgs, eval::EvalArgs, export::ExportArgs,
-    fit_sh::FitShArgs, fuzz_weights::FuzzArgs, gallery::GalleryArgs, render::RenderArgs,
-    schedule::ScheduleArgs, showcase::ShowcaseArgs, size_study::SizeStudyArgs,
+    fit_aod::FitAodArgs, fit_sh::FitShArgs, fuzz_weights::FuzzArgs, gallery::GalleryArgs,
+    render::RenderArgs, schedule::ScheduleArgs, showcase::ShowcaseArgs, size_study::SizeStudyArgs,
     spectrum::SpectrumArgs, train::TrainArgs,
 };
 
@@ -98,6 +98,11 @@ pub enum Command {
     /// (x, y of the global light; cct_k and duv empty where |Duv| > 0.05). --model physical:
     /// the spectral atmosphere, sun and sky; --model preetham: today's sky-only figures.
     Daylight(DaylightArgs),
+    /// Fit the physical atmosphere's aerosol optical depth at 550 nm to the USNO clear-sky
+    /// record (least squares of ln(E / E_USNO), 0-90 deg) and print it, the ratio bands and
+    /// the ratio table at the rounded fit (`--atmosphere record`'s value). Precomputes one
+    /// atmosphere per evaluation, not cached: minutes.
+    FitAod(FitAodArgs),
 }
 
 /// Runs `command`, reading `sample`'s and `cct`'s input from `input` and writing its output to
@@ -124,5 +129,6 @@ pub fn execute(command: Command, input: &mut dyn BufRead, output: &mut dyn Write
         Command::Cct => commands::cct::run(input, output),
         Command::Spectrum(args) => commands::spectrum::run(&args, output),
         Command::Daylight(args) => commands::daylight::run(&args, output),
+        Command::FitAod(args) => commands::fit_aod::run(&args, output),
     }
 }
