@@ -443,6 +443,46 @@ fn daylight_and_spectrum_commands() {
     assert!(row[8].is_empty());
 }
 
+/// `daylight --plot-illuminance / --plot-cct` write PNG charts of the plotters size (both
+/// presets' global curves on the first), and refuse another extension before any work.
+#[test]
+fn daylight_charts_are_png() {
+    default_atmosphere(); // both presets in the cache before the command line reads them
+    clean_atmosphere();
+    let dir = cache_dir().to_str().expect("UTF-8 path");
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR"));
+    let (lux, cct) = (out.join("daylight_lux.png"), out.join("daylight_cct.png"));
+    run(&[
+        "daylight",
+        "--elevations",
+        "-18:90:9",
+        "--plot-illuminance",
+        lux.to_str().expect("UTF-8"),
+        "--plot-cct",
+        cct.to_str().expect("UTF-8"),
+        "--cache-dir",
+        dir,
+    ])
+    .expect("daylight");
+    let (w, h) = sky_train::commands::daylight_plot::SIZE;
+    for file in [&lux, &cct] {
+        let bytes = std::fs::read(file).expect("chart written");
+        assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "{}", file.display());
+        let be =
+            |k: usize| u32::from_be_bytes([bytes[k], bytes[k + 1], bytes[k + 2], bytes[k + 3]]);
+        assert_eq!((be(16), be(20)), (w, h), "{}", file.display());
+    }
+    let e = run(&[
+        "daylight",
+        "--elevations",
+        "0:90:10",
+        "--plot-cct",
+        out.join("cct.svg").to_str().expect("UTF-8"),
+    ])
+    .expect_err("refused");
+    assert!(e.is::<ParamError>() && format!("{e:#}").contains("expected a .png file"));
+}
+
 /// Bad flags: one line naming the flag and its range, as a parameter error (exit status 2).
 #[test]
 fn bad_flags_are_named() {

@@ -6,11 +6,12 @@ use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use anyhow::Result;
-use clap::Args;
+use clap::{Args, ValueEnum};
 use sky_core::photometry::Photometry;
 
 use super::AtmosphereArgs;
 use crate::args::{ParamError, radians};
+use crate::physical::atmosphere::Preset;
 use crate::physical::photometry::Colorimetry;
 use crate::physical::solar;
 use crate::sources::ModelKind;
@@ -38,20 +39,29 @@ pub struct DaylightArgs {
     #[command(flatten)]
     atmosphere: AtmosphereArgs,
     /// Also draw global, diffuse and direct illuminance against elevation (log scale) beside
-    /// the USNO clear-sky record and Preetham's sky-only curve (turbidity 3), as SVG (physical
-    /// only).
-    #[arg(long, value_name = "FILE.svg")]
+    /// the USNO clear-sky record and Preetham's sky-only curve (turbidity 3), and the global
+    /// curve of the other preset, as PNG (physical only).
+    #[arg(long, value_name = "FILE.png")]
     plot_illuminance: Option<PathBuf>,
-    /// Also draw the CCT of the global light against elevation beside Preetham's, as SVG
+    /// Also draw the CCT of the global light against elevation beside Preetham's, as PNG
     /// (physical only).
-    #[arg(long, value_name = "FILE.svg")]
+    #[arg(long, value_name = "FILE.png")]
     plot_cct: Option<PathBuf>,
 }
 
 type Row = (f64, f64, f64, Colorimetry);
 
 fn physical_rows(args: &DaylightArgs, list: &[f64]) -> Result<Vec<Row>, ParamError> {
-    let atm = args.atmosphere.options().load(args.turbidity)?;
+    rows_of(&args.atmosphere.options(), args.turbidity, args, list)
+}
+
+fn rows_of(
+    options: &crate::sources::PhysicalOptions,
+    turbidity: Option<f64>,
+    args: &DaylightArgs,
+    list: &[f64],
+) -> Result<Vec<Row>, ParamError> {
+    let atm = options.load(turbidity)?;
     let scale = args.date.map_or(1.0, |(y, m, d)| {
         solar::eccentricity_correction(solar::day_of_year(y, m, d))
     });
@@ -65,6 +75,11 @@ fn physical_rows(args: &DaylightArgs, list: &[f64]) -> Result<Vec<Row>, ParamErr
             Ok((h, d.diffuse.xyz[1], d.direct.xyz[1], d.global))
         })
         .collect()
+}
+
+fn preset_name(p: Preset) -> String {
+    p.to_possible_value()
+        .map_or_else(String::new, |v| v.get_name().to_owned())
 }
 
 /// Today's sky-only figures: sky-core's Preetham sky with its twilight blend.
@@ -84,14 +99,14 @@ fn preetham_rows(list: &[f64], turbidity: f64) -> Result<Vec<Row>, ParamError> {
         .collect()
 }
 
-fn check_svg(flag: &str, path: &Path) -> Result<(), ParamError> {
+fn check_png(flag: &str, path: &Path) -> Result<(), ParamError> {
     let dir = path
         .parent()
         .filter(|d| !d.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
-    if path.extension().is_none_or(|e| e != "svg") || !dir.is_dir() {
+    if path.extension().is_none_or(|e| e != "png") || !dir.is_dir() {
         return Err(ParamError(format!(
-            "{flag} {}: expected a .svg file in an existing folder",
+            "{flag} {}: expected a .png file in an existing folder",
             path.display()
         )));
     }
@@ -115,6 +130,21 @@ fn plots(args: &DaylightArgs, rows: &[Row]) -> Result<()> {
     );
     let usno = RGBColor(0, 0, 0);
     if let Some(path) = &args.plot_illuminance {
+        // The global curve of each preset whose atmosphere is not the one drawn, the other
+        // flags as given.
+        let options = args.atmosphere.options();
+        let drawn = options.atmosphere(args.turbidity)?;
+        let mut presets = Vec::new();
+        for preset in [Preset::Record, Preset::Clean] {
+            let other = crate::sources::PhysicalOptions {
+                preset: Some(preset),
+                aod: None,
+                ..options.clone()
+            };
+            if other.atmosphere(None)? != drawn {
+                presets.push((preset, rows_of(&other, None, args, &list)?));
+            }
+        }
         let record: Vec<Row> = list
             .iter()
             .map(|&h| {
@@ -169,7 +199,18 @@ fn plots(args: &DaylightArgs, rows: &[Row]) -> Result<()> {
                     &|r| r.1,
                     &preetham,
                 ),
-            ],
+            ]
+            .into_iter()
+            .chain(presets.iter().map(|(p, rows)| {
+                curve(
+                    &format!("physical: global, --atmosphere {}", preset_name(*p)),
+                    RGBColor(150, 40, 160),
+                    false,
+                    &|r| r.3.xyz[1],
+                    rows,
+                )
+            }))
+            .collect::<Vec<_>>(),
         )?;
     }
     if let Some(path) = &args.plot_cct {
@@ -265,10 +306,10 @@ pub fn run(args: &DaylightArgs, output: &mut dyn Write) -> Result<()> {
     let list = elevation_list(args.elevations);
     let plotting = args.plot_illuminance.is_some() || args.plot_cct.is_some();
     if let Some(p) = &args.plot_illuminance {
-        check_svg("--plot-illuminance", p)?;
+        check_png("--plot-illuminance", p)?;
     }
     if let Some(p) = &args.plot_cct {
-        check_svg("--plot-cct", p)?;
+        check_png("--plot-cct", p)?;
     }
     let rows = match args.model {
         ModelKind::Physical => physical_rows(args, &list)?,
