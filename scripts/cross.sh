@@ -5,6 +5,10 @@
 # and a Cortex-M0 (microbit), and the lighting controller's day on all three.
 # The sensor-driven controller day runs on the Cortex-M4F and the Cortex-M3.
 #
+# Then it counts the lighting controller's executed instructions per step on the three cores,
+# under qemu's -icount (firmware/src/bin/controller_instructions.rs): `scripts/cross.sh
+# instructions` does only that.
+#
 # Uses Debian's rustc-web with -Zbuild-std (shared/DESIGN.md, "Toolchains"); the settings live in
 # scripts/cross/config.toml (workspace builds) and firmware/.cargo/config.toml (the firmware).
 # Cross output goes to target/cross, apart from the host build. Runs from any directory.
@@ -17,6 +21,14 @@ bare_metal_targets=(thumbv7em-none-eabihf riscv32imac-unknown-none-elf)
 targets=("${bare_metal_targets[@]}" wasm32-unknown-unknown)
 
 step() { printf '\n==> %s\n' "$*"; }
+mode=${1:-all}
+case "$mode" in
+  all | instructions) ;;
+  *)
+    echo "usage: scripts/cross.sh [instructions]  (instructions: only the controller's instruction counts)" >&2
+    exit 2
+    ;;
+esac
 
 step "setup: toolchain, linker and qemu"
 "$root/scripts/setup.sh"
@@ -24,6 +36,42 @@ step "setup: toolchain, linker and qemu"
 # the config's [env] entry reaches rustc but not cargo itself.
 export RUSTC_BOOTSTRAP=1
 
+# Builds firmware binary $4 for target $1 (features $5, may be empty), prints its size and runs it
+# under qemu on machine $2 with CPU $3 and any further qemu arguments; fails the script unless
+# it exits 0.
+firmware() {
+  local target=$1 machine=$2 cpu=$3 bin=$4 features=${5:-}
+  shift 5
+  local dir=$target_dir${features:+-$features}
+  local elf="$dir/$target/release/$bin"
+
+  step "firmware: build $bin for $target ($machine)${features:+ with $features}"
+  # Run from firmware/, so that firmware/.cargo/config.toml is found.
+  (cd "$root/firmware" && cargo build --release --locked --target "$target" --bin "$bin" \
+    --target-dir "$dir" ${features:+--features "$features"})
+
+  step "firmware: size of $bin on $machine (text = flash: vectors, code, constants; data + bss = static RAM)"
+  if command -v llvm-size >/dev/null; then
+    llvm-size "$elf"
+  else
+    readelf -S --wide "$elf" | grep -E '\.(vector_table|text|rodata|data|bss) '
+  fi
+
+  step "firmware: run $bin under qemu ($machine, $cpu)"
+  # The microbit machine has its one CPU built in (qemu refuses -cpu there).
+  local cpu_args=(-cpu "$cpu")
+  [ "$machine" = microbit ] && cpu_args=()
+  local status=0
+  timeout 120 "$qemu" -machine "$machine" "${cpu_args[@]}" -nographic "$@" \
+    -semihosting-config enable=on,target=native -kernel "$elf" || status=$?
+  if [ "$status" -ne 0 ]; then
+    [ "$status" -eq 124 ] && echo "FAIL: qemu timed out after 120 s" >&2
+    echo "FAIL: $bin on $machine exited with status $status" >&2
+    exit 1
+  fi
+}
+
+if [ "$mode" = all ]; then # (the checks below, up to `fi`, are left unindented)
 step "sky-core: dependency tree for the bare-metal targets (normal dependencies, features)"
 for target in "${bare_metal_targets[@]}"; do
   echo "-- $target"
@@ -67,33 +115,20 @@ runs=(
 )
 for run in "${runs[@]}"; do
   read -r target machine cpu bin features <<<"$run"
-  features=${features:-}
-  dir=$target_dir${features:+-$features}
-  elf="$dir/$target/release/$bin"
+  firmware "$target" "$machine" "$cpu" "$bin" "${features:-}"
+done
+fi # mode all
 
-  step "firmware: build $bin for $target ($machine)${features:+ with $features}"
-  # Run from firmware/, so that firmware/.cargo/config.toml is found.
-  (cd "$root/firmware" && cargo build --release --locked --target "$target" --bin "$bin" \
-    --target-dir "$dir" ${features:+--features "$features"})
-
-  step "firmware: size of $bin on $machine (text = flash: vectors, code, constants; data + bss = static RAM)"
-  if command -v llvm-size >/dev/null; then
-    llvm-size "$elf"
-  else
-    readelf -S --wide "$elf" | grep -E '\.(vector_table|text|rodata|data|bss) '
-  fi
-
-  step "firmware: run $bin under qemu ($machine, $cpu)"
-  # The microbit machine has its one CPU built in (qemu refuses -cpu there).
-  cpu_args=(-cpu "$cpu")
-  [ "$machine" = microbit ] && cpu_args=()
-  status=0
-  timeout 120 "$qemu" -machine "$machine" "${cpu_args[@]}" -nographic \
-    -semihosting-config enable=on,target=native -kernel "$elf" || status=$?
-  if [ "$status" -ne 0 ]; then
-    [ "$status" -eq 124 ] && echo "FAIL: qemu timed out after 120 s" >&2
-    echo "FAIL: $bin on $machine exited with status $status" >&2
-    exit 1
-  fi
+# The controller step's executed instructions: under -icount every instruction advances the
+# virtual clock by 2^8 ns, and the firmware reads it through SysTick (shift 8 gives each
+# instruction at least 3 ticks of each board's core clock, so the counts are exact).
+instruction_runs=(
+  "thumbv7em-none-eabihf mps2-an386 cortex-m4"  # Cortex-M4F: single-precision FPU
+  "thumbv7m-none-eabi lm3s6965evb cortex-m3"    # Cortex-M3: no FPU
+  "thumbv6m-none-eabi microbit cortex-m0"       # Cortex-M0: no FPU, ARMv6-M
+)
+for run in "${instruction_runs[@]}"; do
+  read -r target machine cpu <<<"$run"
+  firmware "$target" "$machine" "$cpu" controller-instructions "" -icount shift=8,align=off,sleep=off
 done
 echo "cross: all passed"

@@ -43,7 +43,7 @@ for example in preetham controller; do
   cargo run --locked -q -p sky-core --example "$example" >/dev/null
 done
 
-step "cargo publish --dry-run: sky-core and sky-train package and build from their packaged sources"
+step "cargo publish --dry-run: sky-core, sky-gpu and sky-train package and build from their packaged sources"
 cargo publish --workspace --dry-run --locked --allow-dirty
 
 step "coverage-guided fuzzing (libFuzzer): every decoder of outside input, 30 s each"

@@ -10,8 +10,8 @@ use clap::{Parser, Subcommand};
 use crate::commands::{
     self, SkyArgs, bench::BenchArgs, daylight::DaylightArgs, eval::EvalArgs, export::ExportArgs,
     fit_aod::FitAodArgs, fit_sh::FitShArgs, fuzz_weights::FuzzArgs, gallery::GalleryArgs,
-    render::RenderArgs, schedule::ScheduleArgs, showcase::ShowcaseArgs, size_study::SizeStudyArgs,
-    spectrum::SpectrumArgs, train::TrainArgs,
+    locus_table::LocusTableArgs, render::RenderArgs, schedule::ScheduleArgs,
+    showcase::ShowcaseArgs, size_study::SizeStudyArgs, spectrum::SpectrumArgs, train::TrainArgs,
 };
 
 /// The `sky-train` command line.
@@ -62,6 +62,9 @@ pub enum Command {
     /// Fit a model's spherical-harmonics coefficients as polynomials in sun zenith and
     /// turbidity (seed 001) and write them as a Rust table for sky-core.
     FitSh(FitShArgs),
+    /// Write the Planckian locus (Planck's law against the CIE 1931 colour-matching functions,
+    /// 10-1000 mired) as the Rust table of cubic pieces that sky-core's CCT searches.
+    LocusTable(LocusTableArgs),
     /// A lighting controller's day: every --step minutes of a UTC date, the sun's position
     /// (NREL SPA), the clear sky's CCT, Duv and horizontal illuminance, and the levels of an
     /// example RGBW luminaire, as CSV on stdout.
@@ -124,6 +127,7 @@ pub fn execute(command: Command, input: &mut dyn BufRead, output: &mut dyn Write
         Command::SizeStudy(args) => commands::size_study::run(&args, output),
         Command::FuzzWeights(args) => commands::fuzz_weights::run(&args, output),
         Command::FitSh(args) => commands::fit_sh::run(&args, output),
+        Command::LocusTable(args) => commands::locus_table::run(&args, output),
         Command::Schedule(args) => commands::schedule::run(&args, output),
         Command::Captures { command } => commands::captures::run(&command, output),
         Command::Cct => commands::cct::run(input, output),

@@ -17,6 +17,7 @@ pub mod export;
 pub mod fuzz;
 pub mod image_io;
 pub mod physical;
+pub mod planckian;
 pub mod plot;
 pub mod reference;
 pub mod render;

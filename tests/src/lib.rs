@@ -18,18 +18,28 @@ pub mod pages {
     pub mod captures {}
     #[doc = include_str!("../../docs/controller.md")]
     pub mod controller {}
+    #[doc = include_str!("../../docs/daylight.md")]
+    pub mod daylight {}
     #[doc = include_str!("../../docs/firmware.md")]
     pub mod firmware {}
+    #[doc = include_str!("../../docs/gpu.md")]
+    pub mod gpu {}
     #[doc = include_str!("../../docs/performance.md")]
     pub mod performance {}
     #[doc = include_str!("../../docs/sh.md")]
     pub mod sh {}
+    #[doc = include_str!("../../docs/sh_errors.md")]
+    pub mod sh_errors {}
     #[doc = include_str!("../../docs/testing.md")]
     pub mod testing {}
     #[doc = include_str!("../../docs/training.md")]
     pub mod training {}
+    #[doc = include_str!("../../docs/weather.md")]
+    pub mod weather {}
     #[doc = include_str!("../../sky-core/README.md")]
     pub mod sky_core_readme {}
+    #[doc = include_str!("../../sky-gpu/README.md")]
+    pub mod sky_gpu_readme {}
     #[doc = include_str!("../../sky-train/README.md")]
     pub mod sky_train_readme {}
 }

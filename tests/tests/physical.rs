@@ -123,8 +123,9 @@ fn twilight_cct_rises() {
 /// end at 100,000 K (where the distance to the locus is no longer a CCT's Duv).
 #[test]
 fn nautical_twilight_above_the_locus() {
-    let (u_end, v_end) = sky_core::cct::planckian_uv(100_000.0);
-    let (u_near, v_near) = sky_core::cct::planckian_uv(50_000.0);
+    let end = sky_train::planckian::locus(1e6 / 100_000.0);
+    let near = sky_train::planckian::locus(1e6 / 50_000.0);
+    let (u_end, v_end, u_near, v_near) = (end.u, end.v, near.u, near.v);
     for k in 0..=12 {
         let h = -6.0 - 0.5 * f64::from(k);
         let g = default_atmosphere()
@@ -132,7 +133,7 @@ fn nautical_twilight_above_the_locus() {
             .expect("sun")
             .daylight()
             .global;
-        let (u, v) = sky_core::cct::xy_to_uv(g.xy.0, g.xy.1);
+        let (u, v) = sky_train::planckian::xy_to_uv(g.xy.0, g.xy.1);
         // The locus's tangent at its blue end, extended: v above it.
         let v_locus = v_end + (u - u_end) * (v_end - v_near) / (u_end - u_near);
         assert!(

@@ -5,11 +5,13 @@
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use proptest::prelude::*;
-use proptest::test_runner::FileFailurePersistence;
 use sky_core::color::{self, Xyy};
 use sky_core::geom::{self, Equirect, Extent};
 use sky_core::{PreethamSky, SkyError, Sun, Vec3};
 use sky_tests::reference::preetham as reference;
+
+mod common;
+use common::proptest_config;
 
 // ---------------------------------------------------------------------------------------------
 // Shared test machinery
@@ -187,17 +189,6 @@ fn xyy_relative(a: Xyy, b: Xyy) -> f64 {
 /// (so that `geom::direction(FRAC_PI_2, φ)`, whose z is −4.4e-8, is not dark), although its docs
 /// say that every view with z < 0 is black. The properties accept either value in this band.
 const HORIZON_BAND: f32 = 1e-6;
-
-/// Proptest configuration: `cases` per property; failing cases are saved beside this file.
-fn proptest_config(cases: u32) -> ProptestConfig {
-    ProptestConfig {
-        cases,
-        failure_persistence: Some(Box::new(FileFailurePersistence::WithSource(
-            "proptest-regressions",
-        ))),
-        ..ProptestConfig::default()
-    }
-}
 
 fn finite_xyy(c: Xyy) -> bool {
     c.x.is_finite() && c.y.is_finite() && c.luminance.is_finite()

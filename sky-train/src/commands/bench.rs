@@ -1,4 +1,5 @@
-//! `sky-train bench`: ns/direction of every evaluator, with ratios against the peers.
+//! `sky-train bench`: ns/direction of every evaluator and ns/call of CCT, with ratios against
+//! the peers.
 
 use std::io::Write;
 
@@ -39,6 +40,8 @@ pub fn run(args: &BenchArgs, output: &mut dyn Write) -> Result<()> {
     )?;
     let sh = bench::sh_reconstruction(args.runs as usize)?;
     write!(output, "{}", bench::sh_report(&sh))?;
+    let cct = bench::cct(args.runs as usize)?;
+    write!(output, "{}", bench::cct_report(&cct))?;
     if args.physical {
         write!(
             output,

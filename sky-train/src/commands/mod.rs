@@ -14,6 +14,7 @@ pub mod fit_aod;
 pub mod fit_sh;
 pub mod fuzz_weights;
 pub mod gallery;
+pub mod locus_table;
 pub mod render;
 pub mod sample;
 pub mod schedule;

@@ -113,7 +113,7 @@ impl Accumulator {
 }
 
 /// Σ r² at `params`, and the normal equations when `normal`, over all examples, in parallel;
-/// `None` when `deadline` passes first (checked every [`BLOCK`] examples).
+/// `None` when `deadline` passes first (checked every `BLOCK` (256) examples).
 ///
 /// The examples are split into a fixed number of chunks whose sums are added in chunk order,
 /// so the result does not depend on the thread count or on scheduling: training is

@@ -2,13 +2,14 @@
 // (`npm install ./sky-wasm-VERSION.tgz three@0.187.0`, three from npm's cache of `npm ci`), then
 // imported there: in node (the package's three entry points, values against the package's own
 // Sky) and in a page served from that project (import map onto node_modules, a SkyMesh
-// drawn with WebGL2 in Debian's Chromium).
+// drawn with WebGL2 in Debian's Chromium), and every JavaScript block of README.md and docs/
+// run there as written: a block that imports from `node:` in node, the others in a page.
 //
 // SKY_WASM_TARBALL: the tarball.
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
-import { mkdtemp, readFile, rm, writeFile } from "node:fs/promises";
+import { mkdtemp, readFile, readdir, rm, symlink, writeFile } from "node:fs/promises";
 import { tmpdir } from "node:os";
 import path from "node:path";
 import { SWIFTSHADER, launch, serve } from "../browser/harness.mjs";
@@ -120,4 +121,65 @@ test("browser: a page served from the scratch project draws a SkyMesh", async ()
     await browser.close();
     server.close();
   }
+});
+
+/** The ```js blocks of README.md and docs/*.md: { where, code }. */
+async function jsBlocks() {
+  const pages = ["README.md", ...(await readdir(path.join(root, "docs"))).filter((f) => f.endsWith(".md")).map((f) => `docs/${f}`)];
+  const blocks = [];
+  for (const page of pages.sort()) {
+    const lines = (await readFile(path.join(root, page), "utf8")).split("\n");
+    for (let i = 0; i < lines.length; i++) {
+      const open = lines[i].match(/^(\s*)```js\s*$/);
+      if (!open) continue;
+      const start = i + 1;
+      const body = [];
+      for (i++; i < lines.length && !/^\s*```\s*$/.test(lines[i]); i++) body.push(lines[i].slice(open[1].length));
+      blocks.push({ where: `${page}:${start}`, code: body.join("\n") });
+    }
+  }
+  return blocks;
+}
+
+test("every JavaScript block of README.md and docs/ runs as written", async () => {
+  const blocks = await jsBlocks();
+  assert.ok(blocks.length >= 3, `found ${blocks.length} blocks`);
+  const inNode = blocks.filter((b) => /from "node:/.test(b.code));
+  const inPage = blocks.filter((b) => !inNode.includes(b));
+  for (const b of inNode) {
+    try {
+      execFileSync("node", ["--input-type=module", "-e", b.code], { cwd: scratch, encoding: "utf8", stdio: "pipe" });
+    } catch (e) {
+      assert.fail(`${b.where} in node: ${e.stderr || e.message}`);
+    }
+  }
+  // The pages import the package as the docs do: by its name through an import map, or from
+  // ./pkg/ as the site built by scripts/wasm.sh lays it out.
+  await symlink(path.join(scratch, "node_modules/sky-wasm"), path.join(scratch, "pkg"));
+  const { server, url } = await serve(scratch);
+  const { browser, page, problems } = await launch(SWIFTSHADER);
+  try {
+    for (const b of inPage) {
+      const html = `<!doctype html><meta charset="utf-8"><link rel="icon" href="data:,">
+<script type="importmap">{ "imports": {
+  "three": "/node_modules/three/build/three.module.js",
+  "sky-wasm": "/node_modules/sky-wasm/sky_wasm.js",
+  "sky-wasm/three": "/node_modules/sky-wasm/three.js" } }</script>
+<canvas width="512" height="512"></canvas>
+<script type="module">
+${b.code}
+document.body.dataset.done = "1";
+</script>`;
+      const name = `block-${b.where.replace(/[^a-z0-9]+/gi, "-")}.html`;
+      await writeFile(path.join(scratch, name), html);
+      await page.goto(`${url}${name}`);
+      await page.waitForSelector("body[data-done]", { timeout: 60_000 }).catch(() => {});
+      assert.deepEqual(problems, [], `${b.where} in the browser`);
+      assert.equal(await page.getAttribute("body", "data-done"), "1", `${b.where} ran to its end`);
+    }
+  } finally {
+    await browser.close();
+    server.close();
+  }
+  console.log(`  ran ${inNode.length} block(s) in node and ${inPage.length} in the browser`);
 });

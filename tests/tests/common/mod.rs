@@ -1,7 +1,20 @@
 //! Helpers shared by the integration tests (`mod common;` in each test file that needs them).
 
 use clap::Parser;
+use proptest::test_runner::{Config as ProptestConfig, FileFailurePersistence};
 use sky_train::cli::{self, Cli};
+
+/// Proptest configuration: `cases` per property; failing cases are saved beside the test file.
+#[allow(dead_code)] // not every test file that shares `common` has properties
+pub(crate) fn proptest_config(cases: u32) -> ProptestConfig {
+    ProptestConfig {
+        cases,
+        failure_persistence: Some(Box::new(FileFailurePersistence::WithSource(
+            "proptest-regressions",
+        ))),
+        ..ProptestConfig::default()
+    }
+}
 
 /// Runs a `sky-train` command line in-process (the binary is a thin wrapper over
 /// `sky_train::cli::execute`) with `input` on stdin and returns stdout.

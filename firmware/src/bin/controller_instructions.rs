@@ -1,0 +1,215 @@
+//! Executed instructions per lighting-controller step, counted by the emulator.
+//!
+//! Run under qemu with `-icount shift=N,align=off,sleep=off` (as `scripts/cross.sh` does):
+//! there every executed instruction advances the virtual clock by exactly 2^N ns, so the
+//! SysTick timer, counting the core clock, counts instructions. The ticks per instruction are
+//! calibrated on `cortex_m::asm::delay`, whose loop is two instructions (`subs`, `bne`) per
+//! iteration: the difference between two lengths of it is a known number of instructions. A run
+//! without `-icount` fails that calibration (the loops' ticks are not proportional).
+//!
+//! For each of the controller example's 144 steps (`src/bin/controller.rs`, the same site,
+//! date and configuration), this counts `sky_core::controller::step` as a whole and its parts
+//! called one by one as `step` calls them: the sun's position (SPA), the sky's constructor
+//! (`Daylight::new`), the horizontal illuminance (a 256-point quadrature of the sky),
+//! chromaticity and CCT (`cct_duv`) and the LED drive levels; the parts' results must equal
+//! the whole step's bit for bit. It prints the minimum, median and maximum over the day of
+//! each, in instructions (the bracket's own instructions subtracted).
+
+#![no_std]
+#![no_main]
+
+use core::hint::black_box;
+use core::sync::atomic::{AtomicU32, Ordering};
+
+use cortex_m::peripheral::syst::SystClkSource;
+use cortex_m::peripheral::{SCB, SYST};
+use cortex_m_rt::{entry, exception};
+use cortex_m_semihosting::hprintln;
+use sky_core::color::{self, Xyy};
+use sky_core::controller::{example_luminaire, step};
+use sky_core::photometry::Photometry;
+use sky_core::solar::{Site, SunPosition, UtcTime};
+use sky_core::twilight::Daylight;
+use sky_core::{SkyError, cct};
+
+// `SITE`, `DATE`, `STEP_MINUTES`, `TURBIDITY`, `FULL_SCALE_LUX` and `PWM_BITS`, from build.rs.
+include!(concat!(env!("OUT_DIR"), "/controller_config.rs"));
+
+const _: u8 = PWM_BITS; // the PWM levels are the controller example's, not counted here
+
+/// Steps in the day.
+const STEPS: usize = (24 * 60 / STEP_MINUTES) as usize;
+/// SysTick's largest reload value: it counts down from here (24 bits).
+const RELOAD: u32 = 0x00FF_FFFF;
+/// Iterations of the calibration loop (two instructions each).
+const CALIBRATION: u32 = 200_000;
+
+/// Times SysTick has wrapped (counted by its exception; each adds the handler's few
+/// instructions to the interval it falls in, once per 2^24 ticks).
+static WRAPS: AtomicU32 = AtomicU32::new(0);
+
+#[exception]
+fn SysTick() {
+    // Only this handler writes (ARMv6-M has no atomic read-modify-write).
+    WRAPS.store(WRAPS.load(Ordering::Relaxed).wrapping_add(1), Ordering::Relaxed);
+}
+
+/// SysTick ticks since it started, read consistently: a wrap that is pending or was counted
+/// during the read makes it read again.
+fn ticks() -> u64 {
+    loop {
+        let wraps = WRAPS.load(Ordering::SeqCst);
+        let current = SYST::get_current();
+        if WRAPS.load(Ordering::SeqCst) == wraps && !SCB::is_pendst_pending() {
+            return (u64::from(wraps) << 24) + u64::from(RELOAD - current);
+        }
+    }
+}
+
+/// The ticks `f` takes, and its result.
+fn measure<T>(f: impl FnOnce() -> T) -> (u64, T) {
+    let start = ticks();
+    let result = black_box(f());
+    (ticks() - start, result)
+}
+
+/// `cortex_m::asm::delay(n)`: n + 1 iterations of a two-instruction loop, always from this one
+/// call site (the loop's alignment padding, executed once, is then the same).
+#[inline(never)]
+fn spin(n: u32) {
+    cortex_m::asm::delay(n);
+}
+
+/// Ticks per instruction, and the ticks of an empty bracket; `None` unless the calibration
+/// loop's ticks grow in proportion to its length (not under `-icount`) and an instruction is at
+/// least one tick (a coarser count would be rounded).
+fn calibrate() -> Option<(f64, u64)> {
+    // The least of three runs of each: a SysTick wrap adds its handler to the run it falls in.
+    let least = |f: &dyn Fn() -> u64| (0..3).map(|_| f()).min().unwrap_or(0);
+    let empty = least(&|| measure(|| ()).0);
+    let [a, b, c] = [1, 2, 3].map(|k| least(&|| measure(|| spin(k * CALIBRATION)).0));
+    // b − a and c − b are each CALIBRATION iterations; allow a tick of rounding.
+    let proportional = b > a && c > b && (c - b).abs_diff(b - a) <= 1;
+    #[allow(clippy::cast_precision_loss)] // tick counts < 2^53
+    let per_instruction = (c - a) as f64 / f64::from(4 * CALIBRATION);
+    (proportional && per_instruction >= 1.0).then_some((per_instruction, empty))
+}
+
+/// Instructions per part of the step, over the day.
+struct Counts {
+    name: &'static str,
+    steps: [u32; STEPS],
+}
+
+/// Runs the day and fills `counts` (whole step, SPA, sky, illuminance, CCT, drive); `Ok(false)`
+/// if a part's result differs from the whole step's.
+fn run(counts: &mut [Counts; 6], per_instruction: f64, empty: u64) -> Result<bool, SkyError> {
+    let (year, month, day) = DATE;
+    let site = Site::new(SITE.0, SITE.1, SITE.2)?;
+    let lamp = example_luminaire()?;
+    let full_output: f32 = lamp.channels().iter().map(|c| c.full_output).sum();
+    #[allow(
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss,
+        clippy::cast_precision_loss
+    )]
+    let instructions = |t: u64| (t.saturating_sub(empty) as f64 / per_instruction + 0.5) as u32;
+    let mut same = true;
+    for (index, minute) in (0..24 * 60).step_by(STEP_MINUTES as usize).enumerate() {
+        let time = UtcTime::new(year, month, day, minute / 60, minute % 60, 0.0)?;
+        let (t_step, whole) = measure(|| step(&time, &site, TURBIDITY, FULL_SCALE_LUX, &lamp, None));
+        let whole = whole?;
+        let (t_sun, sun) = measure(|| SunPosition::new(&time, &site));
+        let sun = sun?;
+        let (t_sky, sky) = measure(|| Daylight::new(sun.sun(), TURBIDITY));
+        let sky = sky?;
+        let (t_lux, illuminance) = measure(|| sky.horizontal_illuminance());
+        let (t_cct, (colour, cct)) = measure(|| {
+            let colour = color::xyz_to_xyy(illuminance);
+            (colour, cct::cct_duv(colour.x, colour.y))
+        });
+        let cct = cct?;
+        let (t_drive, drive) = measure(|| {
+            lamp.drive(Xyy {
+                luminance: full_output * illuminance.y / FULL_SCALE_LUX,
+                ..colour
+            })
+        });
+        same &= whole.sun == sun
+            && whole.illuminance == illuminance
+            && whole.cct == cct
+            && whole.drive == drive;
+        for (c, t) in counts
+            .iter_mut()
+            .zip([t_step, t_sun, t_sky, t_lux, t_cct, t_drive])
+        {
+            c.steps[index] = instructions(t);
+        }
+    }
+    Ok(same)
+}
+
+#[entry]
+fn main() -> ! {
+    let Some(peripherals) = cortex_m::Peripherals::take() else {
+        hprintln!("controller-instructions: FAIL: the core peripherals are taken");
+        qemu_check::finish(false)
+    };
+    let mut syst = peripherals.SYST;
+    syst.set_clock_source(SystClkSource::Core);
+    syst.set_reload(RELOAD);
+    syst.clear_current();
+    syst.enable_interrupt();
+    syst.enable_counter();
+    // Cleared, the counter reads 0 until its first reload.
+    while SYST::get_current() == 0 {}
+
+    let Some((per_instruction, empty)) = calibrate() else {
+        hprintln!(
+            "controller-instructions: FAIL: SysTick does not count instructions; run under \
+             qemu with -icount shift=8,align=off,sleep=off"
+        );
+        qemu_check::finish(false)
+    };
+    let part = |name| Counts {
+        name,
+        steps: [0; STEPS],
+    };
+    let mut counts = [
+        part("controller::step"),
+        part("  sun position (SPA)"),
+        part("  sky (Daylight::new)"),
+        part("  horizontal illuminance (256 points)"),
+        part("  chromaticity and CCT (cct_duv)"),
+        part("  LED drive (Luminaire::drive)"),
+    ];
+    let same = match run(&mut counts, per_instruction, empty) {
+        Ok(same) => same,
+        Err(error) => {
+            hprintln!("controller-instructions: FAIL: {error}");
+            qemu_check::finish(false)
+        }
+    };
+    hprintln!(
+        "controller-instructions: {} steps of {} min; executed instructions (qemu -icount, {:.3} \
+         SysTick ticks per instruction)",
+        STEPS,
+        STEP_MINUTES,
+        per_instruction
+    );
+    hprintln!("{:<40} {:>10} {:>10} {:>10}", "part", "min", "median", "max");
+    for c in &mut counts {
+        c.steps.sort_unstable();
+        hprintln!(
+            "{:<40} {:>10} {:>10} {:>10}",
+            c.name,
+            c.steps[0],
+            (c.steps[STEPS / 2 - 1] + c.steps[STEPS / 2]) / 2,
+            c.steps[STEPS - 1]
+        );
+    }
+    if !same {
+        hprintln!("controller-instructions: FAIL: the parts differ from the whole step");
+    }
+    qemu_check::finish(same)
+}
