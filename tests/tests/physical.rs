@@ -521,6 +521,14 @@ fn bad_flags_are_named() {
             vec!["spectrum", "--model", "preetham", "--sun-zenith", "30"],
             "spectrum takes --model physical",
         ),
+        (
+            vec!["fit-aod", "--aod", "0.3"],
+            "--aod does not apply to fit-aod",
+        ),
+        (
+            vec!["fit-aod", "--tolerance", "0.5"],
+            "--tolerance 0.5 is outside the valid range [0.0001, 0.1]",
+        ),
     ] {
         let mut args = args;
         if args[0] != "sample" || args.contains(&"physical") {

@@ -18,6 +18,10 @@ pub struct FitAodArgs {
     /// The other constituents (their defaults the preset's; --aod is what is fitted).
     #[command(flatten)]
     atmosphere: AtmosphereArgs,
+    /// Not for fit-aod (the optical depth, which turbidity names, is what is fitted); here so
+    /// that the atmosphere flags' exclusions hold.
+    #[arg(long, value_name = "T", hide = true, allow_negative_numbers = true)]
+    turbidity: Option<f64>,
     /// Stop when the optical depth moves less than this (0.0001 to 0.1).
     #[arg(long, value_name = "TAU", default_value_t = 0.002)]
     tolerance: f64,
@@ -29,10 +33,17 @@ pub struct FitAodArgs {
 /// Bad parameters as a [`ParamError`]; a fit that does not converge; a failed write.
 pub fn run(args: &FitAodArgs, output: &mut dyn Write) -> Result<()> {
     let options = args.atmosphere.options();
-    if options.aod.is_some() {
-        return Err(
-            ParamError("--aod does not apply to fit-aod (it is what is fitted)".into()).into(),
-        );
+    if let Some(flag) = [
+        (options.aod.is_some(), "--aod"),
+        (args.turbidity.is_some(), "--turbidity"),
+    ]
+    .into_iter()
+    .find_map(|(given, flag)| given.then_some(flag))
+    {
+        return Err(ParamError(format!(
+            "{flag} does not apply to fit-aod (it is what is fitted)"
+        ))
+        .into());
     }
     if !(1e-4..=0.1).contains(&args.tolerance) {
         return Err(ParamError(format!(
