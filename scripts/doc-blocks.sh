@@ -3,17 +3,20 @@
 # (their output files go to out/, which git ignores), each with `set -euo pipefail`. A block
 # preceded by a `<!-- slow: … -->` line is not run: the script lists it with that line, which
 # says how the block is checked instead. Every `toml` block that names sky-core must require its
-# current version. Part of scripts/test.sh.
+# current version. A block's `sky-train` is the CLI built from this checkout (what
+# `cargo install --path sky-train` puts on a user's PATH). Part of scripts/test.sh.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 mkdir -p out
+cargo build --release --locked -q -p sky-train
+export PATH="$root/target/release:$PATH"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 version=$(sed -n '/^\[workspace.package\]/,/^\[/s/^version = "\(.*\)"/\1/p' Cargo.toml)
 ran=0 skipped=0
-for page in README.md docs/*.md sky-core/README.md sky-train/README.md; do
+for page in README.md docs/*.md sky-core/README.md sky-gpu/README.md sky-train/README.md; do
   # Split the page into one file per block: NNN.LANG (the block), NNN.where (line, slow reason).
   rm -f "$work"/[0-9]*
   awk -v dir="$work" '
