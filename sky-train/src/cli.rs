@@ -9,8 +9,8 @@ use clap::{Parser, Subcommand};
 
 use crate::commands::{
     self, SkyArgs, bench::BenchArgs, daylight::DaylightArgs, daylight_sky::DaylightSkyArgs,
-    daylight_tables::DaylightTablesArgs, eval::EvalArgs, export::ExportArgs, fit_sh::FitShArgs,
-    gallery::GalleryArgs, locus_table::LocusTableArgs, render::RenderArgs,
+    daylight_tables::DaylightTablesArgs, eval::EvalArgs, export::ExportArgs, fit_aod::FitAodArgs,
+    fit_sh::FitShArgs, gallery::GalleryArgs, locus_table::LocusTableArgs, render::RenderArgs,
     schedule::ScheduleArgs, showcase::ShowcaseArgs, size_study::SizeStudyArgs,
     spectrum::SpectrumArgs, train::TrainArgs,
 };
@@ -108,6 +108,11 @@ pub enum Command {
     /// diffuse illuminance (sun zenith 0-108 deg, the tables' optical depths) and write its
     /// weight file.
     DaylightSky(DaylightSkyArgs),
+    /// Fit the physical atmosphere's aerosol optical depth at 550 nm to the USNO clear-sky
+    /// record (least squares of ln(E / E_USNO), 0-90 deg) and print it, the ratio bands and
+    /// the ratio table at the rounded fit (`--atmosphere record`'s value). Precomputes one
+    /// atmosphere per evaluation, not cached: minutes.
+    FitAod(FitAodArgs),
 }
 
 /// Runs `command`, reading `sample`'s and `cct`'s input from `input` and writing its output to
@@ -136,5 +141,6 @@ pub fn execute(command: Command, input: &mut dyn BufRead, output: &mut dyn Write
         Command::Daylight(args) => commands::daylight::run(&args, output),
         Command::DaylightTables(args) => commands::daylight_tables::run(&args, output),
         Command::DaylightSky(args) => commands::daylight_sky::run(&args, output),
+        Command::FitAod(args) => commands::fit_aod::run(&args, output),
     }
 }

@@ -12,12 +12,16 @@ use plotters::prelude::*;
 use crate::image_io;
 
 /// The font family name the charts use, registered once from the vendored file.
-const FONT: &str = "sans-serif";
+pub(crate) const FONT: &str = "sans-serif";
 
 /// DejaVu Sans 2.37 (Bitstream Vera licence, `sky-train/fonts/LICENSE`).
 static FONT_FILE: &[u8] = include_bytes!("../fonts/DejaVuSans.ttf");
 
-fn register_font() -> Result<()> {
+/// Registers the vendored font as [`FONT`] (once).
+///
+/// # Errors
+/// The font file does not load.
+pub(crate) fn register_font() -> Result<()> {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
     let ok = *REGISTERED
         .get_or_init(|| plotters::style::register_font(FONT, FontStyle::Normal, FONT_FILE).is_ok());

@@ -6,11 +6,12 @@ use std::io::{BufWriter, Write};
 use std::path::PathBuf;
 
 use anyhow::Result;
-use clap::Args;
+use clap::{Args, ValueEnum};
 
 use super::AtmosphereArgs;
 use crate::args::{ParamError, radians};
 use crate::output_path;
+use crate::physical::atmosphere::Preset;
 use crate::physical::photometry::Colorimetry;
 use crate::physical::solar;
 use crate::sources::ModelKind;
@@ -38,20 +39,29 @@ pub struct DaylightArgs {
     #[command(flatten)]
     atmosphere: AtmosphereArgs,
     /// Also draw global, diffuse and direct illuminance against elevation (log scale) beside
-    /// the USNO clear-sky record and Preetham's sky-only curve (turbidity 3), as SVG (physical
-    /// only).
-    #[arg(long, value_name = "FILE.svg")]
+    /// the USNO clear-sky record and Preetham's sky-only curve (turbidity 3), and the global
+    /// curve of the other preset, as PNG (physical only).
+    #[arg(long, value_name = "FILE.png")]
     plot_illuminance: Option<PathBuf>,
-    /// Also draw the CCT of the global light against elevation beside Preetham's, as SVG
+    /// Also draw the CCT of the global light against elevation beside Preetham's, as PNG
     /// (physical only).
-    #[arg(long, value_name = "FILE.svg")]
+    #[arg(long, value_name = "FILE.png")]
     plot_cct: Option<PathBuf>,
 }
 
 type Row = (f64, f64, f64, Colorimetry);
 
 fn physical_rows(args: &DaylightArgs, list: &[f64]) -> Result<Vec<Row>, ParamError> {
-    let atm = args.atmosphere.options().load(args.turbidity)?;
+    rows_of(&args.atmosphere.options(), args.turbidity, args, list)
+}
+
+fn rows_of(
+    options: &crate::sources::PhysicalOptions,
+    turbidity: Option<f64>,
+    args: &DaylightArgs,
+    list: &[f64],
+) -> Result<Vec<Row>, ParamError> {
+    let atm = options.load(turbidity)?;
     let scale = args.date.map_or(1.0, |(y, m, d)| {
         solar::eccentricity_correction(solar::day_of_year(y, m, d))
     });
@@ -65,6 +75,11 @@ fn physical_rows(args: &DaylightArgs, list: &[f64]) -> Result<Vec<Row>, ParamErr
             Ok((h, d.diffuse.xyz[1], d.direct.xyz[1], d.global))
         })
         .collect()
+}
+
+fn preset_name(p: Preset) -> String {
+    p.to_possible_value()
+        .map_or_else(String::new, |v| v.get_name().to_owned())
 }
 
 /// Knots of the previous sky-only model's twilight decay (sun elevation in degrees, log10 of
@@ -131,6 +146,21 @@ fn plots(args: &DaylightArgs, rows: &[Row]) -> Result<()> {
     );
     let usno = RGBColor(0, 0, 0);
     if let Some(path) = &args.plot_illuminance {
+        // The global curve of each preset whose atmosphere is not the one drawn, the other
+        // flags as given.
+        let options = args.atmosphere.options();
+        let drawn = options.atmosphere(args.turbidity)?;
+        let mut presets = Vec::new();
+        for preset in [Preset::Record, Preset::Clean] {
+            let other = crate::sources::PhysicalOptions {
+                preset: Some(preset),
+                aod: None,
+                ..options.clone()
+            };
+            if other.atmosphere(None)? != drawn {
+                presets.push((preset, rows_of(&other, None, args, &list)?));
+            }
+        }
         let record: Vec<Row> = list
             .iter()
             .map(|&h| {
@@ -185,7 +215,18 @@ fn plots(args: &DaylightArgs, rows: &[Row]) -> Result<()> {
                     &|r| r.1,
                     &preetham,
                 ),
-            ],
+            ]
+            .into_iter()
+            .chain(presets.iter().map(|(p, rows)| {
+                curve(
+                    &format!("physical: global, --atmosphere {}", preset_name(*p)),
+                    RGBColor(150, 40, 160),
+                    false,
+                    &|r| r.3.xyz[1],
+                    rows,
+                )
+            }))
+            .collect::<Vec<_>>(),
         )?;
     }
     if let Some(path) = &args.plot_cct {
@@ -281,10 +322,10 @@ pub fn run(args: &DaylightArgs, output: &mut dyn Write) -> Result<()> {
     let list = elevation_list(args.elevations);
     let plotting = args.plot_illuminance.is_some() || args.plot_cct.is_some();
     if let Some(p) = &args.plot_illuminance {
-        output_path::file_ending("--plot-illuminance", p, &["svg"])?;
+        output_path::file_ending("--plot-illuminance", p, &["png"])?;
     }
     if let Some(p) = &args.plot_cct {
-        output_path::file_ending("--plot-cct", p, &["svg"])?;
+        output_path::file_ending("--plot-cct", p, &["png"])?;
     }
     let rows = match args.model {
         ModelKind::Physical => physical_rows(args, &list)?,

@@ -1,5 +1,6 @@
 //! The charts of `sky-train daylight --plot-illuminance / --plot-cct` (docs/daylight.md), drawn
-//! by plotters as SVG and written atomically.
+//! by plotters' bitmap backend in the vendored font ([`crate::plot`]) and written atomically
+//! as PNG.
 
 use std::path::Path;
 
@@ -18,8 +19,11 @@ pub struct Curve {
     pub points: Vec<(f64, f64)>,
 }
 
+/// The charts' size in pixels.
+pub const SIZE: (u32, u32) = (1200, 750);
+
 /// Draws `curves` against sun elevation over `x`, on a log y axis over `y` when `log`, to the
-/// SVG file `path`.
+/// PNG file `path`.
 ///
 /// # Errors
 /// A drawing error, or the file cannot be written.
@@ -32,16 +36,19 @@ pub fn chart(
     log: bool,
     curves: &[Curve],
 ) -> Result<()> {
-    let mut svg = String::new();
+    use crate::plot::{FONT, register_font};
+    register_font()?;
+    let (width, height) = SIZE;
+    let mut pixels = vec![255u8; 3 * width as usize * height as usize];
     {
-        let root = SVGBackend::with_string(&mut svg, (960, 600)).into_drawing_area();
+        let root = BitMapBackend::with_buffer(&mut pixels, SIZE).into_drawing_area();
         root.fill(&WHITE).map_err(|e| anyhow!("{e}"))?;
         let mut builder = ChartBuilder::on(&root);
         builder
-            .caption(title, ("sans-serif", 22))
+            .caption(title, (FONT, 24))
             .margin(16)
-            .x_label_area_size(44)
-            .y_label_area_size(80);
+            .x_label_area_size(52)
+            .y_label_area_size(96);
         macro_rules! draw {
             ($chart:expr) => {{
                 let mut chart = $chart;
@@ -49,6 +56,16 @@ pub fn chart(
                     .configure_mesh()
                     .x_desc("sun elevation (degrees, geometric)")
                     .y_desc(y_desc)
+                    .x_label_formatter(&|v| format!("{v:.0}"))
+                    .y_label_formatter(&|v| {
+                        if *v >= 1.0 {
+                            format!("{v:.0}")
+                        } else {
+                            format!("{v}")
+                        }
+                    })
+                    .label_style((FONT, 15))
+                    .axis_desc_style((FONT, 17))
                     .draw()
                     .map_err(|e| anyhow!("{e}"))?;
                 for c in curves {
@@ -77,6 +94,7 @@ pub fn chart(
                 chart
                     .configure_series_labels()
                     .position(SeriesLabelPosition::LowerRight)
+                    .label_font((FONT, 15))
                     .background_style(WHITE.mix(0.85))
                     .border_style(BLACK)
                     .draw()
@@ -98,5 +116,5 @@ pub fn chart(
         }
         root.present().map_err(|e| anyhow!("{e}"))?;
     }
-    crate::image_io::write_text(path, &svg)
+    crate::image_io::write_png_srgb8(path, width, height, &pixels)
 }

@@ -12,6 +12,7 @@ pub mod daylight_sky;
 pub mod daylight_tables;
 pub mod eval;
 pub mod export;
+pub mod fit_aod;
 pub mod fit_sh;
 pub mod gallery;
 pub mod locus_table;
@@ -99,11 +100,16 @@ pub struct SkyArgs {
     atmosphere: AtmosphereArgs,
 }
 
-/// The atmosphere of `--model physical` (each flag defaults to the clear mid-latitude
-/// atmosphere of docs/daylight.md).
+/// The atmosphere of `--model physical`: a preset (docs/daylight.md), each flag in place of
+/// one of its values.
 #[derive(Args, Clone, Default)]
 pub struct AtmosphereArgs {
-    /// Aerosol optical depth at 550 nm, 0 to 5 (physical only; default 0.151; excludes
+    /// The atmosphere the other flags change (physical only; default record): record, the
+    /// clear-sky record's (AOD fitted to USNO Circular 171, `fit-aod`); clean, today's clean
+    /// clear continental sky (OPAC continental average, AOD 0.151).
+    #[arg(long, value_enum, value_name = "PRESET")]
+    atmosphere: Option<crate::physical::atmosphere::Preset>,
+    /// Aerosol optical depth at 550 nm, 0 to 5 (physical only; default the preset's; excludes
     /// --turbidity, which maps Preetham's turbidity to it).
     #[arg(
         long,
@@ -138,6 +144,7 @@ impl AtmosphereArgs {
     #[must_use]
     pub fn options(&self) -> sources::PhysicalOptions {
         sources::PhysicalOptions {
+            preset: self.atmosphere,
             aod: self.aod,
             angstrom: self.angstrom,
             aerosol_ssa: self.aerosol_ssa,

@@ -10,13 +10,14 @@ use super::constituents::{
 /// A clear atmosphere. Everything else (the planet, air's density profile, the ozone layer's
 /// shape, the cross-sections) is fixed in [`constituents`].
 ///
-/// The default is a clear (cloudless) mid-latitude continental atmosphere:
+/// The default is [`Preset::default`]'s. Every preset is a clear (cloudless) mid-latitude
+/// continental atmosphere with these constituents:
 /// - the aerosol of OPAC's "continental average" type at 80 % relative humidity (Hess, Koepke
 ///   & Schult 1998, "Optical Properties of Aerosols and Clouds: The Software Package OPAC",
-///   BAMS 79, Table 4): optical depth 0.151, single-scattering albedo 0.925 and asymmetry
-///   0.703 at 550 nm; Ångström exponent 1.3 (Ångström 1929's typical continental value, the one
-///   Preetham et al. 1999 use); exponential profile with a 1.2 km scale height (Bruneton 2017's
-///   demo: the boundary layer);
+///   BAMS 79, Table 4): single-scattering albedo 0.925 and asymmetry 0.703 at 550 nm;
+///   Ångström exponent 1.3 (Ångström 1929's typical continental value, the one Preetham et
+///   al. 1999 use); exponential profile with a 1.2 km scale height (Bruneton 2017's demo: the
+///   boundary layer); the optical depth at 550 nm is the preset's;
 /// - ozone column 300 DU (about the global mean total ozone; Bruneton 2017's default);
 /// - Lambertian ground albedo 0.2 (grass and soil, broadband);
 /// - air: the US Standard Atmosphere 1976, 360 ppm CO₂ (fixed, [`constituents`]).
@@ -40,8 +41,43 @@ pub struct Atmosphere {
 
 impl Default for Atmosphere {
     fn default() -> Self {
-        Self {
-            aod_550: 0.151,
+        Preset::default().atmosphere()
+    }
+}
+
+/// OPAC's continental-average aerosol optical depth at 550 nm (Hess, Koepke & Schult 1998,
+/// Table 4): today's clean clear sky.
+pub const CLEAN_AOD_550: f64 = 0.151;
+
+/// The aerosol optical depth at 550 nm of the clear-sky record: the value that brings the
+/// global horizontal illuminance closest to USNO Circular 171's curve (least squares of
+/// ln(E / E_USNO) over sun elevations 0-90°, `sky-train fit-aod`, rounded to 0.01), every other
+/// constituent at [`Atmosphere`]'s published values.
+pub const RECORD_AOD_550: f64 = 0.43;
+
+/// The named atmospheres of `--atmosphere`: the constituents of [`Atmosphere`]'s list, each
+/// preset with its aerosol optical depth.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum Preset {
+    /// The measured clear-sky record's (the default): τ₅₅₀ = [`RECORD_AOD_550`], fitted to
+    /// USNO Circular 171 (Brown 1952's cloudless but, by today's standards, turbid skies).
+    #[default]
+    Record,
+    /// Today's clean clear continental sky: OPAC's continental average, τ₅₅₀ =
+    /// [`CLEAN_AOD_550`].
+    Clean,
+}
+
+impl Preset {
+    /// The preset's atmosphere.
+    #[must_use]
+    pub fn atmosphere(self) -> Atmosphere {
+        let aod_550 = match self {
+            Self::Record => RECORD_AOD_550,
+            Self::Clean => CLEAN_AOD_550,
+        };
+        Atmosphere {
+            aod_550,
             angstrom: 1.3,
             aerosol_ssa: 0.925,
             aerosol_g: 0.703,
@@ -115,14 +151,22 @@ impl Atmosphere {
         Ok(())
     }
 
-    /// The default atmosphere with the aerosol of Preetham's turbidity `t`: Preetham, Shirley &
+    /// The default atmosphere with the aerosol of Preetham's turbidity `t` ([`Self::with_turbidity`]).
+    ///
+    /// # Errors
+    /// For `t` outside [`TURBIDITY_RANGE`].
+    pub fn from_turbidity(t: f64) -> Result<Self, AtmosphereError> {
+        Self::default().with_turbidity(t)
+    }
+
+    /// This atmosphere with the aerosol of Preetham's turbidity `t`: Preetham, Shirley &
     /// Smits 1999 (appendix) relate turbidity to Ångström's turbidity coefficient,
     /// β = 0.04608 T − 0.04586, with α = 1.3, so τ_a(λ) = β (λ / 1 µm)^−1.3 and
     /// τ_550 = β · 0.55^−1.3 (0.100 at T = 2, 0.200 at T = 3).
     ///
     /// # Errors
     /// For `t` outside [`TURBIDITY_RANGE`].
-    pub fn from_turbidity(t: f64) -> Result<Self, AtmosphereError> {
+    pub fn with_turbidity(self, t: f64) -> Result<Self, AtmosphereError> {
         if !(TURBIDITY_RANGE.0..=TURBIDITY_RANGE.1).contains(&t) {
             return Err(AtmosphereError {
                 flag: "--turbidity",
@@ -134,7 +178,7 @@ impl Atmosphere {
         Ok(Self {
             aod_550: beta * 0.55_f64.powf(-1.3),
             angstrom: 1.3,
-            ..Self::default()
+            ..self
         })
     }
 
@@ -187,5 +231,27 @@ mod tests {
         };
         assert_eq!(bad.validate().map_err(|e| e.flag), Err("--ozone-du"));
         assert!(Atmosphere::default().validate().is_ok());
+    }
+
+    #[test]
+    fn presets_differ_in_the_optical_depth_only() {
+        let (record, clean) = (Preset::Record.atmosphere(), Preset::Clean.atmosphere());
+        assert_eq!(Atmosphere::default(), record);
+        assert_eq!(
+            Atmosphere {
+                aod_550: clean.aod_550,
+                ..record
+            },
+            clean
+        );
+        assert!(record.aod_550 > clean.aod_550);
+        // Turbidity replaces the optical depth and keeps the preset's other constituents.
+        let t = Atmosphere {
+            ground_albedo: 0.5,
+            ..clean
+        }
+        .with_turbidity(3.0)
+        .unwrap_or_default();
+        assert!((t.aod_550 - 0.2009).abs() < 1e-3 && t.ground_albedo == 0.5);
     }
 }

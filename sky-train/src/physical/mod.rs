@@ -6,8 +6,8 @@
 //!   US Standard Atmosphere 1976), ozone (Serdyuchenko/Gorshelev 2014 cross-sections, a layer
 //!   peaking at 25 km), aerosol (Ångström law, single-scattering albedo, Henyey-Greenstein);
 //! - [`solar`]: ASTM G-173-03's extraterrestrial spectrum, the Earth-Sun distance, the disc;
-//! - [`atmosphere`]: the parameters, their defaults (a clear mid-latitude atmosphere) and
-//!   Preetham's turbidity as aerosol optical depth;
+//! - [`atmosphere`]: the parameters, the presets (the clear-sky record's, the default, and
+//!   today's clean sky) and Preetham's turbidity as aerosol optical depth;
 //! - [`transport`]: Bruneton-style precomputed scattering orders, vectorised over 47
 //!   wavelength bins (360-830 nm);
 //! - [`sky`]: [`PhysicalAtmosphere`] (the precomputed tables) and [`PhysicalSky`] (one sun:

@@ -78,6 +78,9 @@ fn to_sphere(p: V3, d: V3, radius: f64) -> Option<f64> {
     [-b - s, -b + s].into_iter().find(|&t| t > 1e-6)
 }
 
+/// The strata of the sun's zenith cosine in [`MonteCarlo::top_outgoing_fraction`].
+pub const OUTGOING_STRATA: usize = 16;
+
 /// The path tracer for one wavelength bin of an atmosphere.
 #[derive(Debug, Clone)]
 pub struct MonteCarlo {
@@ -177,9 +180,9 @@ impl MonteCarlo {
         self.phase_r.0 + self.phase_r.1 * nu * nu
     }
 
-    /// The radiance one path from the ground viewer along `d` brings back.
-    fn path(&self, d0: V3, sun: V3, rng: &mut StdRng) -> f64 {
-        let mut p: V3 = [0.0, 0.0, R];
+    /// The radiance one path from a viewer at `p0` along `d0` brings back.
+    fn path(&self, p0: V3, d0: V3, sun: V3, rng: &mut StdRng) -> f64 {
+        let mut p = p0;
         let mut d = d0;
         let mut throughput = 1.0;
         let mut radiance = 0.0;
@@ -305,7 +308,7 @@ impl MonteCarlo {
     #[must_use]
     pub fn radiance(&self, zenith_deg: f64, dir: V3, paths: usize, seed: u64) -> Estimate {
         let (sun, d) = (Self::sun(zenith_deg), normalise(dir));
-        self.estimate(paths, seed, |rng| self.path(d, sun, rng))
+        self.estimate(paths, seed, |rng| self.path([0.0, 0.0, R], d, sun, rng))
     }
 
     /// Diffuse horizontal irradiance at the ground with the sun at `zenith_deg`, W m⁻² nm⁻¹.
@@ -315,11 +318,51 @@ impl MonteCarlo {
         let e = self.estimate(paths, seed, |rng| {
             let mu = rng.random::<f64>().sqrt();
             let d = around([0.0, 0.0, 1.0], mu, 2.0 * PI * rng.random::<f64>());
-            self.path(d, sun, rng)
+            self.path([0.0, 0.0, R], d, sun, rng)
         });
         Estimate {
             mean: PI * e.mean,
             std_error: PI * e.std_error,
         }
+    }
+
+    /// The sunlight the atmosphere and the ground send back out through the top of the
+    /// atmosphere, over the whole sphere, as a fraction of the sunlight entering it (π R_top²
+    /// F₀): the outgoing flux ∫∫ L μ dω dA over the top's sphere, its points uniform in area
+    /// (the sun's zenith angle there uniform in cosine over [−1, 1], the night side included)
+    /// and the directions cosine-distributed downwards. What crosses the limb unscattered is
+    /// not in it (a path that escapes never counts the sun's disc).
+    /// Stratified in the sun's zenith cosine: [`OUTGOING_STRATA`] equal strata, `paths` in all.
+    #[must_use]
+    pub fn top_outgoing_fraction(&self, paths: usize, seed: u64) -> Estimate {
+        let n = OUTGOING_STRATA;
+        let (mut mean, mut variance) = (0.0, 0.0);
+        for k in 0..n {
+            #[allow(clippy::cast_precision_loss)]
+            let (lo, width) = (-1.0 + 2.0 * k as f64 / n as f64, 2.0 / n as f64);
+            let e = self.estimate(paths / n, seed.wrapping_add(k as u64), |rng| {
+                let cos_zenith = lo + width * rng.random::<f64>();
+                let sun = around([0.0, 0.0, 1.0], cos_zenith, 0.0);
+                let mu = -rng.random::<f64>().sqrt();
+                let d = around([0.0, 0.0, 1.0], mu, 2.0 * PI * rng.random::<f64>());
+                self.path([0.0, 0.0, RT], d, sun, rng)
+            });
+            #[allow(clippy::cast_precision_loss)]
+            let share = 1.0 / n as f64;
+            mean += share * e.mean;
+            variance += (share * e.std_error).powi(2);
+        }
+        // ∫∫ L μ dω dA = 4π R_top² · π · E[L], over π R_top² F₀.
+        let scale = 4.0 * PI / self.solar;
+        Estimate {
+            mean: scale * mean,
+            std_error: scale * variance.sqrt(),
+        }
+    }
+
+    /// The extraterrestrial irradiance of this bin at 1 AU, W m⁻² nm⁻¹.
+    #[must_use]
+    pub fn solar_irradiance(&self) -> f64 {
+        self.solar
     }
 }

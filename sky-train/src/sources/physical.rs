@@ -7,14 +7,17 @@ use std::sync::Arc;
 use sky_core::Vec3;
 use sky_core::color::{self, Xyy};
 
+use crate::physical::atmosphere::Preset;
 use crate::physical::{Atmosphere, PhysicalSky, Resolution, cache};
 
 use super::{ModelKind, ParamError, SkyParams, SkySource};
 
-/// The physical model's command-line options (each `None` takes the default atmosphere's
-/// value, [`Atmosphere::default`]).
+/// The physical model's command-line options (each `None` takes the preset's value, the
+/// default preset's without `--atmosphere`).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct PhysicalOptions {
+    /// `--atmosphere`: the named atmosphere the other options change.
+    pub preset: Option<Preset>,
     /// `--aod`: aerosol optical depth at 550 nm (excludes `--turbidity`).
     pub aod: Option<f64>,
     /// `--angstrom`: Ångström exponent.
@@ -36,6 +39,7 @@ impl PhysicalOptions {
     #[must_use]
     pub fn first_flag(&self) -> Option<&'static str> {
         [
+            (self.preset.is_some(), "--atmosphere"),
             (self.aod.is_some(), "--aod"),
             (self.angstrom.is_some(), "--angstrom"),
             (self.aerosol_ssa.is_some(), "--aerosol-ssa"),
@@ -48,12 +52,14 @@ impl PhysicalOptions {
         .find_map(|(given, flag)| given.then_some(flag))
     }
 
-    /// The atmosphere these options and `turbidity` describe, validated.
+    /// The atmosphere these options and `turbidity` describe, validated: the preset with each
+    /// option given in place of its value (`turbidity` in place of the optical depth).
     ///
     /// # Errors
     /// A [`ParamError`] naming the flag and its valid range; both `--aod` and `--turbidity`.
     pub fn atmosphere(&self, turbidity: Option<f64>) -> Result<Atmosphere, ParamError> {
         let out_of_range = |e: crate::physical::AtmosphereError| ParamError(e.to_string());
+        let preset = self.preset.unwrap_or_default().atmosphere();
         let base = match (turbidity, self.aod) {
             (Some(_), Some(_)) => {
                 return Err(ParamError(
@@ -61,10 +67,10 @@ impl PhysicalOptions {
                         .into(),
                 ));
             }
-            (Some(t), None) => Atmosphere::from_turbidity(t).map_err(out_of_range)?,
+            (Some(t), None) => preset.with_turbidity(t).map_err(out_of_range)?,
             (None, aod) => Atmosphere {
-                aod_550: aod.unwrap_or(Atmosphere::default().aod_550),
-                ..Atmosphere::default()
+                aod_550: aod.unwrap_or(preset.aod_550),
+                ..preset
             },
         };
         let atm = Atmosphere {
