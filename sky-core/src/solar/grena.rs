@@ -145,13 +145,20 @@ mod tests {
 
     #[test]
     fn every_year_in_range_has_a_position_and_others_are_refused() {
-        let site = Site::new(-89.9, 179.9, 0.0).expect("valid");
-        for year in [MIN_YEAR, 2060, MAX_YEAR] {
-            let t = UtcTime::new(year, 12, 31, 23, 59, 59.999).expect("valid");
-            let p = sun_position(&t, &site).expect("in range");
-            assert!((0.0..=180.0).contains(&p.zenith_deg()));
-            assert!((0.0..360.0).contains(&p.azimuth_deg()));
+        // The poles, the date line and the range's ends.
+        for (lat, lon) in [(90.0, 180.0), (-90.0, -180.0), (0.0, 0.0), (-89.9, 179.9)] {
+            let site = Site::new(lat, lon, 0.0).expect("valid");
+            for year in [MIN_YEAR, 2060, MAX_YEAR] {
+                for (month, day, hour) in [(1, 1, 0), (12, 31, 23)] {
+                    let t = UtcTime::new(year, month, day, hour, 59, 59.999).expect("valid");
+                    let p = sun_position(&t, &site).expect("in range");
+                    assert!((0.0..=180.0).contains(&p.zenith_deg()), "{p:?}");
+                    assert!((0.0..360.0).contains(&p.azimuth_deg()), "{p:?}");
+                    assert!(p.apparent_zenith_deg() <= p.zenith_deg(), "{p:?}");
+                }
+            }
         }
+        let site = Site::new(0.0, 0.0, 0.0).expect("valid");
         for year in [MIN_YEAR - 1, MAX_YEAR + 1] {
             let t = UtcTime::new(year, 1, 1, 0, 0, 0.0).expect("valid");
             assert!(sun_position(&t, &site).is_err());
