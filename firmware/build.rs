@@ -18,7 +18,7 @@ use sky_core::controller::{self, Measurement};
 use sky_core::led::Luminaire;
 use sky_core::neural::{FixedNeuralSky, NeuralSky, fixed, pretrained};
 use sky_core::sh::ShSky;
-use sky_core::solar::{Site, SunPosition, UtcTime};
+use sky_core::solar::{Site, SunAlgorithm, SunPosition, UtcTime};
 use sky_core::{PreethamSky, Sun, Vec3, geom};
 
 /// Sun zenith angles of the cases, in degrees.
@@ -307,6 +307,7 @@ fn controller_settings() -> controller::Settings {
         aerosol_optical_depth: CONTROLLER_AOD,
         light: controller::Light::Global,
         full_scale_lux: CONTROLLER_FULL_SCALE_LUX,
+        sun: SunAlgorithm::Fast,
     }
 }
 
@@ -417,7 +418,7 @@ fn weather_expected_table() -> Result<String, Box<dyn Error>> {
     let mut steps = String::new();
     let mut count = 0;
     for (index, (minute, time)) in times.into_iter().enumerate() {
-        let sun = SunPosition::new(&time, &site)?;
+        let sun = controller_settings().sun.position(&time, &site)?;
         let reading = weather_reading(index, minute, &sun)?;
         let s = controller::step(&time, &site, &controller_settings(), &lamp, Some(reading))?;
         let (cct_k, duv) = cct_or_zero(&s);

@@ -26,7 +26,7 @@ use crate::led::{Channel, Drive, Luminaire};
 pub use crate::measurement::Measurement;
 use crate::overcast;
 use crate::perez::SkyCondition;
-use crate::solar::{Site, SunPosition, UtcTime};
+use crate::solar::{Site, SunAlgorithm, SunPosition, UtcTime};
 
 /// The example RGBW luminaire: typical LED chromaticities (CIE 1931 x, y) and outputs in lumens
 /// at full drive: red 625 nm (0.700, 0.295; 300 lm), green 525 nm (0.170, 0.700; 600 lm), royal
@@ -85,15 +85,19 @@ pub struct Settings {
     pub light: Light,
     /// The horizontal illuminance, lux, at which the luminaire gives its full output.
     pub full_scale_lux: f32,
+    /// The sun position's algorithm: [`SunAlgorithm::Fast`] (2010-2110) by default,
+    /// [`SunAlgorithm::Spa`] for other years or SPA's precision.
+    pub sun: SunAlgorithm,
 }
 
 impl Default for Settings {
-    /// The default atmosphere, the global light, full output at 10,000 lx.
+    /// The default atmosphere, the global light, full output at 10,000 lx, the fast sun.
     fn default() -> Self {
         Self {
             aerosol_optical_depth: daylight::DEFAULT_AOD,
             light: Light::Global,
             full_scale_lux: 10_000.0,
+            sun: SunAlgorithm::Fast,
         }
     }
 }
@@ -101,7 +105,7 @@ impl Default for Settings {
 /// What the controller computes at one time.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Step {
-    /// The sun (SPA: geometric and apparent zenith, compass azimuth).
+    /// The sun ([`Settings::sun`]'s algorithm: geometric and apparent zenith, compass azimuth).
     pub sun: SunPosition,
     /// The clear-sky daylight at this time and place (global, diffuse, direct, melanopic EDI).
     pub daylight: Daylight,
@@ -170,7 +174,8 @@ pub fn clear_sky_illuminance(sun: &SunPosition, aod: f32) -> Result<Vec3, SkyErr
 ///
 /// # Errors
 /// [`SkyError::OutOfRange`] for an aerosol optical depth out of range, a `full_scale_lux` that
-/// is not positive and finite, or a bad measurement ([`Measurement`]).
+/// is not positive and finite, a year outside the sun algorithm's range ([`SunAlgorithm`]), or
+/// a bad measurement ([`Measurement`]).
 #[inline] // with a literal `None`, the measurement path is left out of the binary
 pub fn step(
     time: &UtcTime,
@@ -188,7 +193,7 @@ pub fn step(
             max: f32::MAX,
         });
     }
-    let sun = SunPosition::new(time, site)?;
+    let sun = settings.sun.position(time, site)?;
     let daylight = Daylight::new(sun.sun(), settings.aerosol_optical_depth)?;
     let clear = daylight.global();
     let (followed, followed_melanopic) = match settings.light {

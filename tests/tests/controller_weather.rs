@@ -9,7 +9,7 @@ use sky_core::controller::{
     Measurement, Settings, Step, clear_sky_illuminance, example_luminaire, step,
 };
 use sky_core::led::Luminaire;
-use sky_core::solar::{Site, SunPosition, UtcTime};
+use sky_core::solar::{Site, UtcTime};
 
 const AOD: f32 = sky_core::daylight::DEFAULT_AOD;
 
@@ -56,7 +56,7 @@ fn cloud_factor(t: f64) -> f64 {
 /// The lux reading at `time`: the clear-sky illuminance times the cloud factor (exactly the
 /// clear-sky value where the factor is 1).
 fn lux_reading(time: &UtcTime, t: f64) -> f32 {
-    let sun = SunPosition::new(time, &vienna()).expect("sun");
+    let sun = settings().sun.position(time, &vienna()).expect("sun");
     let clear = clear_sky_illuminance(&sun, AOD).expect("clear").y;
     let f = cloud_factor(t);
     #[allow(clippy::cast_possible_truncation)]
@@ -70,7 +70,7 @@ fn lux_reading(time: &UtcTime, t: f64) -> f32 {
 /// The pyranometer reading at `time`: a clear-sky global irradiance of 1000 cos Z W/m² (a
 /// stand-in: sky-core has no clear-sky irradiance model), times the cloud factor.
 fn wm2_reading(time: &UtcTime, t: f64) -> f32 {
-    let sun = SunPosition::new(time, &vienna()).expect("sun");
+    let sun = settings().sun.position(time, &vienna()).expect("sun");
     let cos_z = sun.zenith_deg().to_radians().cos().max(0.0);
     #[allow(clippy::cast_possible_truncation)]
     let g = (1000.0 * cos_z * cloud_factor(t)) as f32;

@@ -8,6 +8,7 @@ use clap::Args;
 
 use crate::args::{date, elevation, in_range, latitude, longitude};
 use sky_core::controller::{Light, Settings};
+use sky_core::solar::SunAlgorithm;
 
 use crate::controller::{ScheduleConfig, read_measurements, schedule, schedule_measured};
 
@@ -96,6 +97,8 @@ pub fn run(args: &ScheduleArgs, output: &mut dyn Write) -> Result<()> {
                 Light::Global
             },
             full_scale_lux: args.full_scale_lux,
+            // The CLI takes the years 1-2999.
+            sun: SunAlgorithm::Spa,
         },
     };
     let mut out = BufWriter::new(output);
