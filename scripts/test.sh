@@ -23,8 +23,9 @@ start=$(date +%s)
 step "setup"
 scripts/setup.sh
 
-step "cargo fmt --check"
+step "cargo fmt --check (the workspace, and the firmware outside it)"
 cargo fmt --all -- --check
+(cd firmware && cargo fmt -- --check)
 
 step "cargo clippy --all-targets -D warnings"
 cargo clippy --workspace --all-targets --locked -- -D warnings

@@ -25,11 +25,11 @@ use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m::peripheral::{SCB, SYST};
 use cortex_m_rt::{entry, exception};
 use cortex_m_semihosting::hprintln;
+use sky_core::SkyError;
 use sky_core::color::{self, Xyy};
 use sky_core::controller::{Light, Settings, example_luminaire, step};
-use sky_core::solar::{Site, SunAlgorithm, UtcTime, grena};
-use sky_core::SkyError;
 use sky_core::daylight::{self, Daylight};
+use sky_core::solar::{Site, SunAlgorithm, UtcTime, grena};
 
 // `SITE`, `DATE`, `STEP_MINUTES`, `AOD`, `FULL_SCALE_LUX` and `PWM_BITS`, from build.rs.
 include!(concat!(env!("OUT_DIR"), "/controller_config.rs"));
@@ -50,7 +50,10 @@ static WRAPS: AtomicU32 = AtomicU32::new(0);
 #[exception]
 fn SysTick() {
     // Only this handler writes (ARMv6-M has no atomic read-modify-write).
-    WRAPS.store(WRAPS.load(Ordering::Relaxed).wrapping_add(1), Ordering::Relaxed);
+    WRAPS.store(
+        WRAPS.load(Ordering::Relaxed).wrapping_add(1),
+        Ordering::Relaxed,
+    );
 }
 
 /// SysTick ticks since it started, read consistently: a wrap that is pending or was counted
@@ -204,7 +207,13 @@ fn main() -> ! {
         STEP_MINUTES,
         per_instruction
     );
-    hprintln!("{:<40} {:>10} {:>10} {:>10}", "part", "min", "median", "max");
+    hprintln!(
+        "{:<40} {:>10} {:>10} {:>10}",
+        "part",
+        "min",
+        "median",
+        "max"
+    );
     for c in &mut counts {
         c.steps.sort_unstable();
         hprintln!(

@@ -112,13 +112,7 @@ fn run() -> Result<(usize, usize), SkyError> {
     for want in &STEPS {
         let (hour, minute) = (want.minute / 60, want.minute % 60);
         let time = UtcTime::new(year, month, day, hour, minute, 0.0)?;
-        let got = step(
-            &time,
-            &site,
-            &settings(),
-            &lamp,
-            Some(want.measurement()),
-        )?;
+        let got = step(&time, &site, &settings(), &lamp, Some(want.measurement()))?;
         let pwm = got.drive.quantise(PWM_BITS)?;
         let differ = differences(&got, pwm, want);
         let unit = if want.kind == 0 { "lx " } else { "W/m2" };
