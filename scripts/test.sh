@@ -17,8 +17,8 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
-step() { printf '\n==> %s\n' "$*"; }
 start=$(date +%s)
+step() { printf '\n==> %s (at %d s)\n' "$*" "$(( $(date +%s) - start ))"; }
 
 step "setup"
 scripts/setup.sh

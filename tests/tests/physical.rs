@@ -481,7 +481,12 @@ fn daylight_charts_are_png() {
         out.join("cct.svg").to_str().expect("UTF-8"),
     ])
     .expect_err("refused");
-    assert!(e.is::<ParamError>() && format!("{e:#}").contains("expected a .png file"));
+    assert!(
+        e.is::<ParamError>()
+            && format!("{e:#}").contains("--plot-cct")
+            && format!("{e:#}").contains("must end in .png"),
+        "{e:#}"
+    );
 }
 
 /// Bad flags: one line naming the flag and its range, as a parameter error (exit status 2).
