@@ -37,8 +37,7 @@ fuzz_target!(|data: &[u8]| {
         elevation: 0.0,
         date: (2026, 6, 21),
         step_minutes: 10,
-        turbidity: 3.0,
-        full_scale_lux: 10_000.0,
+        settings: sky_core::controller::Settings::default(),
     };
     let mut out = Vec::new();
     let _ = schedule_measured(&config, &rows, std::path::Path::new("fuzz.csv"), &mut out);
