@@ -680,12 +680,12 @@ fn outputs_are_checked_before_the_work_starts() {
             "--out|is not a folder",
         ),
         (
-            format!("{daylight} --plot-cct {t}/missing/x.svg"),
+            format!("{daylight} --plot-cct {t}/missing/x.png"),
             "--plot-cct|does not exist",
         ),
         (
-            format!("{daylight} --plot-illuminance {t}/a.png"),
-            "--plot-illuminance|.svg",
+            format!("{daylight} --plot-illuminance {t}/a.svg"),
+            "--plot-illuminance|.png",
         ),
     ];
     // Every case is run, and every one that is not refused at once is reported.
