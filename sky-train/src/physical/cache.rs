@@ -23,7 +23,7 @@ use super::solar;
 use super::transport::{GroundTables, Medium, OrderReport, Resolution, Table3, Transmittance};
 
 /// The file format's version (bumped with any change of layout or method).
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 const MAGIC: &[u8; 8] = b"SKYPHYS\0";
 
 /// The environment variable that overrides the cache directory.

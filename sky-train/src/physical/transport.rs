@@ -477,16 +477,29 @@ impl Table3 {
     }
 }
 
-/// Ray-march sample distances t_k = d (k / n)² (dense near the viewer) and their trapezoid
-/// weights.
+/// Ray-march sample distances t_k = d u_k², u_k = k / n (dense near the viewer, where the
+/// aerosol's 1.2 km scale height is), their quadrature weights, and the distance from the
+/// sample before. The weights are Simpson's rule in u on ∫ f(t) dt = ∫ f(d u²) 2 d u du: the
+/// trapezoid rule in t on the same samples overestimated the orders n ≥ 2 by about 1 % (the
+/// integrand, exponential in altitude, is convex; found with the Monte Carlo, docs/daylight.md).
+/// `n` is rounded up to even.
 fn march(d: f64, n: usize) -> impl Iterator<Item = (f64, f64, f64)> {
+    let n = (n.max(2) + 1) & !1;
     #[allow(clippy::cast_precision_loss)]
-    let t = move |k: usize| d * (k as f64 / n as f64).powi(2);
+    let u = move |k: usize| k as f64 / n as f64;
+    let t = move |k: usize| d * u(k) * u(k);
+    #[allow(clippy::cast_precision_loss)]
+    let h = 1.0 / n as f64;
     (0..=n).map(move |k| {
-        let lo = if k == 0 { t(0) } else { t(k - 1) };
-        let hi = if k == n { t(n) } else { t(k + 1) };
+        let simpson = if k == 0 || k == n {
+            1.0
+        } else if k % 2 == 1 {
+            4.0
+        } else {
+            2.0
+        };
         let prev = if k == 0 { 0.0 } else { t(k) - t(k - 1) };
-        (t(k), 0.5 * (hi - lo), prev)
+        (t(k), simpson * h / 3.0 * 2.0 * d * u(k), prev)
     })
 }
 
