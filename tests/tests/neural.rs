@@ -60,33 +60,57 @@ const PREETHAM_IRRADIANCE_BOUND: f64 = 0.0022;
 const HOSEK_NRMSE_BOUND: f64 = 0.0245;
 const HOSEK_IRRADIANCE_BOUND: f64 = 0.02;
 
-/// The generated constants are exactly what `sky-train export` makes of the committed weight
-/// files, and decode to the same weights.
+/// The generated constant `name` (in `source`) is exactly what `sky-train export` makes of the
+/// committed weight file `file`, and decodes to the same weights.
+fn check_generated<const H: usize>(
+    file: &str,
+    name: &str,
+    source: &str,
+    constant: &sky_core::neural::NeuralWeights<H>,
+) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let weights_path = root.join("sky-core/weights").join(file);
+    let weights = export::read_weights::<H>(&weights_path).expect("weight file decodes");
+    assert_eq!(&weights, constant, "{file} and the {name} constant differ");
+    let generated =
+        export::pretrained_source(&weights, name, &weights_path).expect("a constant's name");
+    let committed =
+        std::fs::read_to_string(root.join("sky-core/src/neural/pretrained").join(source))
+            .expect("generated file exists");
+    assert!(
+        generated == committed,
+        "sky-core/src/neural/pretrained/{source} is not what `sky-train export` makes of {file}: regenerate it"
+    );
+}
+
+/// Every shipped network's constant regenerates from its weight file.
 #[test]
 fn pretrained_constants_regenerate_from_the_weight_files() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    for (file, name, source, constant) in [
-        (
-            "preetham.skyn",
-            "PREETHAM",
-            "preetham.rs",
-            &pretrained::PREETHAM,
-        ),
-        ("hosek.skyn", "HOSEK", "hosek.rs", &pretrained::HOSEK),
-    ] {
-        let weights_path = root.join("sky-core/weights").join(file);
-        let weights = export::read_weights::<12>(&weights_path).expect("weight file decodes");
-        assert_eq!(&weights, constant, "{file} and the {name} constant differ");
-        let generated =
-            export::pretrained_source(&weights, name, &weights_path).expect("a constant's name");
-        let committed =
-            std::fs::read_to_string(root.join("sky-core/src/neural/pretrained").join(source))
-                .expect("generated file exists");
-        assert!(
-            generated == committed,
-            "sky-core/src/neural/pretrained/{source} is not what `sky-train export` makes of {file}: regenerate it"
-        );
-    }
+    check_generated(
+        "preetham.skyn",
+        "PREETHAM",
+        "preetham.rs",
+        &pretrained::PREETHAM,
+    );
+    check_generated("hosek.skyn", "HOSEK", "hosek.rs", &pretrained::HOSEK);
+    check_generated(
+        "daylight_day.skyn",
+        "DAYLIGHT_DAY",
+        "daylight_day.rs",
+        &pretrained::DAYLIGHT_DAY,
+    );
+    check_generated(
+        "daylight_dusk.skyn",
+        "DAYLIGHT_DUSK",
+        "daylight_dusk.rs",
+        &pretrained::DAYLIGHT_DUSK,
+    );
+    check_generated(
+        "daylight_night.skyn",
+        "DAYLIGHT_NIGHT",
+        "daylight_night.rs",
+        &pretrained::DAYLIGHT_NIGHT,
+    );
 }
 
 /// `rgb_batch` compiled for the widest vectors this CPU has (AVX2 where present, as `sky-train`

@@ -40,7 +40,10 @@
 //! # Ok::<(), sky_core::SkyError>(())
 //! ```
 
+mod sky;
 mod tables;
+
+pub use sky::{BLENDS, DaylightSky, HIDDEN, MAX_SUN_ZENITH};
 
 use glam::Vec3;
 

@@ -8,7 +8,7 @@ use anyhow::{Result, bail};
 use clap::Args;
 
 use crate::args::{ParamError, seconds};
-use crate::daylight_sky::{self, MAX_SUN_ZENITH_DEG, SOURCE};
+use crate::daylight_sky::{self, Part};
 use crate::daylight_tables::{AOD_NODES, atmosphere};
 use crate::export::{self, TrainedOn};
 use crate::physical::{Resolution, cache};
@@ -18,6 +18,10 @@ use crate::train::{self, TrainConfig, Trained};
 /// `daylight-sky`'s arguments.
 #[derive(Args)]
 pub struct DaylightSkyArgs {
+    /// Which network: the day's (sun zenith 0-90 deg), dusk's (84-98 deg) or night's
+    /// (94-108 deg).
+    #[arg(long, value_enum)]
+    part: Part,
     /// Hidden neurons of the 6-H-3 network: 6, 12, 24 or 48.
     #[arg(long, default_value_t = 12)]
     hidden: usize,
@@ -30,9 +34,17 @@ pub struct DaylightSkyArgs {
     /// Iteration budget (LM steps, 1 to 1000000).
     #[arg(long, default_value_t = 1000, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
     max_iterations: u32,
-    /// Training sun zeniths, uniform over [0, 108] deg inclusive (2 to 1000).
-    #[arg(long, default_value_t = 37, value_parser = clap::value_parser!(u16).range(2..=1000))]
-    sun_zeniths: u16,
+    /// Training sun zeniths, uniform over the part's range, both ends included (2 to 1000;
+    /// default 37 by day, 2.5 deg apart, 29 at dusk, 0.5 deg apart, 15 at night, 1 deg apart).
+    #[arg(long, value_parser = clap::value_parser!(u16).range(2..=1000))]
+    sun_zeniths: Option<u16>,
+    /// View strata per sky: zenith bands x azimuth sectors, one jittered view each
+    /// (1 to 100 each).
+    #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u16).range(1..=100))]
+    view_zeniths: u16,
+    /// See --view-zeniths.
+    #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u16).range(1..=100))]
+    view_azimuths: u16,
     /// Weight file to write, atomically.
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
@@ -42,12 +54,18 @@ pub struct DaylightSkyArgs {
     cache_dir: Option<PathBuf>,
 }
 
-fn write<const H: usize>(trained: &Trained, seed: u32, path: &std::path::Path) -> Result<()> {
+fn write<const H: usize>(
+    trained: &Trained,
+    part: Part,
+    seed: u32,
+    path: &std::path::Path,
+) -> Result<()> {
+    let (lo, hi) = part.zenith_range();
     let on = TrainedOn {
-        source: SOURCE.into(),
+        source: part.source().into(),
         uses_turbidity: true,
         turbidity_range: (AOD_NODES[0], AOD_NODES[AOD_NODES.len() - 1]),
-        sun_zenith_range: (0.0, MAX_SUN_ZENITH_DEG.to_radians()),
+        sun_zenith_range: (lo.to_radians(), hi.to_radians()),
     };
     export::write_weights(path, &export::to_weights_of::<H>(trained, &on, seed)?)
 }
@@ -83,10 +101,19 @@ pub fn run(args: &DaylightSkyArgs, output: &mut dyn Write) -> Result<()> {
     config.seed = u64::from(args.seed);
     config.max_seconds = args.max_seconds;
     config.max_iterations = args.max_iterations as usize;
-    let zeniths = daylight_sky::zeniths(usize::from(args.sun_zeniths));
-    let set = daylight_sky::training_set(&atmospheres, &zeniths, (10, 20), config.seed)?;
+    let n_zeniths = args
+        .sun_zeniths
+        .map_or(args.part.sun_zeniths(), usize::from);
+    let zeniths = daylight_sky::zeniths(args.part, n_zeniths);
+    let strata = (
+        usize::from(args.view_zeniths),
+        usize::from(args.view_azimuths),
+    );
+    let set = daylight_sky::training_set(&atmospheres, &zeniths, strata, config.seed)?;
     // Validation: between the training zeniths, every atmosphere.
-    let step = MAX_SUN_ZENITH_DEG / f64::from(args.sun_zeniths - 1);
+    let (lo, hi) = args.part.zenith_range();
+    #[allow(clippy::cast_precision_loss)]
+    let step = (hi - lo) / (n_zeniths - 1) as f64;
     let between: Vec<f64> = zeniths
         .windows(2)
         .step_by(3)
@@ -125,10 +152,10 @@ pub fn run(args: &DaylightSkyArgs, output: &mut dyn Write) -> Result<()> {
     )?;
     if let Some(path) = &args.out {
         match args.hidden {
-            6 => write::<6>(&trained, args.seed, path)?,
-            12 => write::<12>(&trained, args.seed, path)?,
-            24 => write::<24>(&trained, args.seed, path)?,
-            48 => write::<48>(&trained, args.seed, path)?,
+            6 => write::<6>(&trained, args.part, args.seed, path)?,
+            12 => write::<12>(&trained, args.part, args.seed, path)?,
+            24 => write::<24>(&trained, args.part, args.seed, path)?,
+            48 => write::<48>(&trained, args.part, args.seed, path)?,
             _ => bail!("unreachable layout"),
         }
         writeln!(output, "wrote {}", path.display())?;

@@ -75,11 +75,21 @@ pub fn run(args: &ExportArgs, output: &mut dyn Write) -> Result<()> {
                 )
                 .into());
             };
-            let weights = super::weight_file("--weights", path)?;
-            if matches!(args.format, ExportFormat::F32) {
+            // sky-core's daylight skies are 6-24-3 (f32 only); every other shipped sky 6-12-3.
+            let len = std::fs::metadata(path).map_or(0, |m| m.len());
+            if matches!(args.format, ExportFormat::F32)
+                && len == sky_core::neural::weights::encoded_len(24) as u64
+            {
+                let weights = export::read_weights::<24>(path)
+                    .map_err(|e| ParamError(format!("--weights {e:#}")))?;
                 export::pretrained_source(&weights, name, path)?
             } else {
-                export::pretrained_fixed_source(&weights, name, path)?
+                let weights = super::weight_file("--weights", path)?;
+                if matches!(args.format, ExportFormat::F32) {
+                    export::pretrained_source(&weights, name, path)?
+                } else {
+                    export::pretrained_fixed_source(&weights, name, path)?
+                }
             }
         }
         ExportFormat::Glsl => shader_source(args, sky_gpu::Language::Glsl)?,
