@@ -25,6 +25,8 @@
 //! The values are sky-core's, bit for bit: the same code compiled for wasm32 (the wasm-bindgen
 //! tests in `tests/wasm.rs` check every model against the native build to 1e-6 relative).
 
+pub mod daylight;
+pub mod number;
 pub mod projection;
 pub mod srgb8;
 
@@ -47,9 +49,7 @@ const MIDDLE_GREY: f32 = 0.18;
 /// [`Sky::auto_exposure`]: 32 × 32 gives 812 directions.
 const EXPOSURE_GRID: u32 = 32;
 
-fn js_error(e: impl core::fmt::Display) -> JsError {
-    JsError::new(&e.to_string())
-}
+use number::{display_error, js_error};
 
 /// The model behind a [`Sky`].
 // One per JavaScript `Sky`: 424 bytes are nothing to save; the AOAS sky (its style holds up to 64
@@ -149,7 +149,7 @@ impl Sky {
         sun_azimuth: f32,
         turbidity: f32,
     ) -> Result<Sky, JsError> {
-        let weights = NeuralWeights::<12>::decode(bytes).map_err(js_error)?;
+        let weights = NeuralWeights::<12>::decode(bytes).map_err(display_error)?;
         Self::neural_with(&weights, sun_zenith, sun_azimuth, turbidity)
     }
 
@@ -260,7 +260,7 @@ impl Sky {
         Ok(match &self.model {
             Model::Preetham(s) => models::preetham::params(s).to_vec(),
             Model::Neural(s) => models::neural::params(s),
-            Model::Aoas(s) => models::aoas::params(s).map_err(js_error)?.to_vec(),
+            Model::Aoas(s) => models::aoas::params(s).map_err(display_error)?.to_vec(),
             Model::Sh(s) => models::sh::params(s).to_vec(),
         })
     }
