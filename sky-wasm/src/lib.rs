@@ -536,29 +536,16 @@ impl Renderer {
         exposure: f32,
     ) -> Result<(), JsError> {
         self.check_len(out.length(), 4, "out")?;
-        let lit_sphere = match (&sky.model, self.projection.kind()) {
-            (Model::Sh(sh), Kind::Sphere) => Some(sh),
+        let source = match (&sky.model, self.projection.kind()) {
+            (Model::Sh(sh), Kind::Sphere) => Source::LitSphere(sh),
             (_, Kind::Sphere) => {
                 return Err(JsError::new(
                     "the sphere is lit by a spherical-harmonics sky: build it with Sky.sh",
                 ));
             }
-            _ => None,
+            _ => Source::Sky(&sky.model),
         };
-        let mut rgb = [Vec3::ZERO; CHUNK];
-        let p = &self.projection;
-        for (dirs, pixels) in p.directions().chunks(CHUNK).zip(p.pixels().chunks(CHUNK)) {
-            let rgb = &mut rgb[..dirs.len()];
-            match lit_sphere {
-                Some(sh) => {
-                    for (o, n) in rgb.iter_mut().zip(dirs) {
-                        *o = sh.irradiance(*n) * core::f32::consts::FRAC_1_PI;
-                    }
-                }
-                None => sky.model.rgb_batch(dirs, rgb),
-            }
-            write_srgb(&self.table, &mut self.srgb, pixels, rgb, exposure);
-        }
+        self.fill_srgb(&source, exposure);
         out.copy_from(&self.srgb);
         Ok(())
     }
@@ -577,17 +564,7 @@ impl Renderer {
         exposure: f32,
     ) -> Result<(), JsError> {
         self.check_len(out.length(), 4, "out")?;
-        let (mut rgb_a, mut rgb_b) = ([Vec3::ZERO; CHUNK], [Vec3::ZERO; CHUNK]);
-        let p = &self.projection;
-        for (dirs, pixels) in p.directions().chunks(CHUNK).zip(p.pixels().chunks(CHUNK)) {
-            let (rgb_a, rgb_b) = (&mut rgb_a[..dirs.len()], &mut rgb_b[..dirs.len()]);
-            a.model.rgb_batch(dirs, rgb_a);
-            b.model.rgb_batch(dirs, rgb_b);
-            for (x, y) in rgb_a.iter_mut().zip(rgb_b.iter()) {
-                *x = (*x - *y).abs();
-            }
-            write_srgb(&self.table, &mut self.srgb, pixels, rgb_a, exposure);
-        }
+        self.fill_srgb(&Source::Difference(&a.model, &b.model), exposure);
         out.copy_from(&self.srgb);
         Ok(())
     }
@@ -615,6 +592,47 @@ impl Renderer {
         }
         out.copy_from(&self.linear);
         Ok(())
+    }
+}
+
+/// What a frame of [`Renderer`] shows per pixel.
+enum Source<'a> {
+    /// The sky's radiance.
+    Sky(&'a Model),
+    /// |a − b| per channel.
+    Difference(&'a Model, &'a Model),
+    /// A white diffuse sphere's radiance, E(n)/π, lit by the SH sky.
+    LitSphere(&'a ShSky),
+}
+
+impl Renderer {
+    /// The 8-bit sRGB RGBA frame of `source` × `exposure` in `self.srgb`: one copy of the
+    /// loop for every source (the .wasm has a size budget; the match per chunk of 256 pixels
+    /// costs nothing measurable).
+    #[inline(never)]
+    fn fill_srgb(&mut self, source: &Source, exposure: f32) {
+        let (mut rgb, mut other) = ([Vec3::ZERO; CHUNK], [Vec3::ZERO; CHUNK]);
+        let p = &self.projection;
+        for (dirs, pixels) in p.directions().chunks(CHUNK).zip(p.pixels().chunks(CHUNK)) {
+            let rgb = &mut rgb[..dirs.len()];
+            match source {
+                Source::Sky(m) => m.rgb_batch(dirs, rgb),
+                Source::Difference(a, b) => {
+                    let other = &mut other[..dirs.len()];
+                    a.rgb_batch(dirs, rgb);
+                    b.rgb_batch(dirs, other);
+                    for (x, y) in rgb.iter_mut().zip(other.iter()) {
+                        *x = (*x - *y).abs();
+                    }
+                }
+                Source::LitSphere(sh) => {
+                    for (o, n) in rgb.iter_mut().zip(dirs) {
+                        *o = sh.irradiance(*n) * core::f32::consts::FRAC_1_PI;
+                    }
+                }
+            }
+            write_srgb(&self.table, &mut self.srgb, pixels, rgb, exposure);
+        }
     }
 }
 
