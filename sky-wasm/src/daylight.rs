@@ -35,14 +35,9 @@ const MIN_STEP_SECONDS: f64 = 1.0;
 #[derive(Debug, Clone, Default)]
 pub struct DaylightDay {
     times: Vec<f64>,
-    elevation_deg: Vec<f32>,
-    global_lux: Vec<f32>,
-    diffuse_lux: Vec<f32>,
-    direct_lux: Vec<f32>,
-    x: Vec<f32>,
-    y: Vec<f32>,
-    cct_k: Vec<f32>,
-    melanopic_edi_lux: Vec<f32>,
+    /// Per sample, in this order: sun elevation, global, diffuse and direct illuminance, x, y,
+    /// CCT, melanopic EDI (the getters below).
+    columns: [Vec<f32>; 8],
 }
 
 /// `value` in `[min, max]` (NaN is not), else sky-core's out-of-range error naming `parameter`.
@@ -90,9 +85,12 @@ impl DaylightDay {
         let step = check("step [s]", step, MIN_STEP_SECONDS, DAY_SECONDS).map_err(js_error)?;
         let site = Site::new(latitude, longitude, elevation).map_err(js_error)?;
         let sun = Settings::default().sun;
-        let mut out = Self::default();
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let samples = ((end - start) / step) as usize + 1;
+        let mut out = Self {
+            times: Vec::with_capacity(samples),
+            columns: core::array::from_fn(|_| Vec::with_capacity(samples)),
+        };
         // The first sample checks the date, the sun algorithm's years and the atmosphere.
         for k in 0..samples {
             #[allow(clippy::cast_precision_loss)]
@@ -104,18 +102,29 @@ impl DaylightDay {
             let position = sun.position(&time, &site).map_err(js_error)?;
             let light = Daylight::new(position.sun(), aod).map_err(js_error)?;
             let (x, y) = light.chromaticity();
-            out.times.push(t);
             #[allow(clippy::cast_possible_truncation)]
-            out.elevation_deg.push(position.elevation_deg() as f32);
-            out.global_lux.push(light.global().y);
-            out.diffuse_lux.push(light.diffuse().y);
-            out.direct_lux.push(light.direct().y);
-            out.x.push(x);
-            out.y.push(y);
-            out.cct_k.push(light.cct().map_or(f32::NAN, |c| c.kelvin));
-            out.melanopic_edi_lux.push(light.melanopic_edi());
+            let row = [
+                position.elevation_deg() as f32,
+                light.global().y,
+                light.diffuse().y,
+                light.direct().y,
+                x,
+                y,
+                light.cct().map_or(f32::NAN, |c| c.kelvin),
+                light.melanopic_edi(),
+            ];
+            out.times.push(t);
+            for (column, v) in out.columns.iter_mut().zip(row) {
+                column.push(v);
+            }
         }
         Ok(out)
+    }
+
+    /// Column `i` of [`Self::columns`], one copy for every getter.
+    #[inline(never)]
+    fn column(&self, i: usize) -> Vec<f32> {
+        self.columns[i].clone()
     }
 
     /// The samples' times, seconds after 0:00 UTC (a `Float64Array`).
@@ -129,42 +138,42 @@ impl DaylightDay {
     #[wasm_bindgen(getter, js_name = elevationDeg)]
     #[must_use]
     pub fn elevation_deg(&self) -> Vec<f32> {
-        self.elevation_deg.clone()
+        self.column(0)
     }
 
     /// The global (sun and sky) horizontal illuminance, lux.
     #[wasm_bindgen(getter, js_name = globalLux)]
     #[must_use]
     pub fn global_lux(&self) -> Vec<f32> {
-        self.global_lux.clone()
+        self.column(1)
     }
 
     /// The diffuse (sky) horizontal illuminance, lux.
     #[wasm_bindgen(getter, js_name = diffuseLux)]
     #[must_use]
     pub fn diffuse_lux(&self) -> Vec<f32> {
-        self.diffuse_lux.clone()
+        self.column(2)
     }
 
     /// The direct (sun) horizontal illuminance, lux.
     #[wasm_bindgen(getter, js_name = directLux)]
     #[must_use]
     pub fn direct_lux(&self) -> Vec<f32> {
-        self.direct_lux.clone()
+        self.column(3)
     }
 
     /// The CIE 1931 chromaticity x of the global light.
     #[wasm_bindgen(getter)]
     #[must_use]
     pub fn x(&self) -> Vec<f32> {
-        self.x.clone()
+        self.column(4)
     }
 
     /// The CIE 1931 chromaticity y of the global light.
     #[wasm_bindgen(getter)]
     #[must_use]
     pub fn y(&self) -> Vec<f32> {
-        self.y.clone()
+        self.column(5)
     }
 
     /// The global light's correlated colour temperature, kelvin; NaN where it is undefined
@@ -172,14 +181,14 @@ impl DaylightDay {
     #[wasm_bindgen(getter, js_name = cctK)]
     #[must_use]
     pub fn cct_k(&self) -> Vec<f32> {
-        self.cct_k.clone()
+        self.column(6)
     }
 
     /// The global light's melanopic EDI, lux (CIE S 026:2018, D65-equivalent).
     #[wasm_bindgen(getter, js_name = melanopicEdiLux)]
     #[must_use]
     pub fn melanopic_edi_lux(&self) -> Vec<f32> {
-        self.melanopic_edi_lux.clone()
+        self.column(7)
     }
 }
 
