@@ -22,6 +22,7 @@
 #                                   surface: exported names, thrown Errors, typed arrays;
 #                                 - browser tests (the demo in Debian's chromium through
 #                                   playwright-core; prints the frame times the demo measures;
+#                                   its daylight plot against native sky-core's values;
 #                                   screenshot in target/wasm/artifacts), each model's GLSL
 #                                   shader in WebGL2 (SwiftShader) against sky-core, the
 #                                   three.js demo page;
@@ -158,7 +159,7 @@ run_tests() {
 
   step "browser: the demos and the GPU shaders in Debian's chromium (playwright-core)"
   (cd "$root/sky-wasm" && SKY_WASM_SITE="$site_default" SKY_WASM_ARTIFACTS="$out/artifacts" \
-    node --test --test-reporter=spec tests/browser/)
+    SKY_NATIVE_VALUES="$native" node --test --test-reporter=spec tests/browser/)
 
   step "the npm tarball installed into a scratch project, imported in node and in a page"
   (cd "$root/sky-wasm" && SKY_WASM_TARBALL="$(ls "$out"/sky-wasm-*.tgz)" \

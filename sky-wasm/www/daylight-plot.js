@@ -86,8 +86,8 @@ export function drawDaylightPlot(ctx, day, markerSeconds) {
     ctx.fillStyle = "#dde3ee";
     ctx.fillText(label, x + 24, g.top + 12);
   });
-  // The marker: the time the sky shows.
-  const x = xOf(g, markerSeconds);
+  // The marker: the time the sky shows, one pixel column wide (at a pixel's centre).
+  const x = Math.round(xOf(g, markerSeconds)) + 0.5;
   ctx.strokeStyle = g.colours.marker;
   ctx.setLineDash([4, 3]);
   ctx.beginPath(); ctx.moveTo(x, g.top); ctx.lineTo(x, g.bottom); ctx.stroke();
