@@ -1,5 +1,5 @@
 //! The clear-sky daylight of one UTC day at a site, as typed arrays: sky-core's
-//! [`Daylight`](sky_core::daylight::Daylight) at the sun position the controller computes
+//! [`Daylight`] at the sun position the controller computes
 //! ([`Settings::sun`](sky_core::controller::Settings)'s default algorithm), one call per day.
 
 use sky_core::SkyError;

@@ -95,7 +95,7 @@ function drawDaylight() {
     const cct = Number.isNaN(day.cctK[k]) ? "no CCT (|Duv| > 0.05)" : `${Math.round(day.cctK[k])} K`;
     $("daylight-error").textContent = "";
     window.skyDemo.daylight = { key: daylight.key, day, geometry, marker: t };
-    $("daylight-readout").textContent = `${(day.times[k] / 3600).toFixed(2)} h UTC: sun ${day.elevationDeg[k].toFixed(1)}°, ` +
+    $("daylight-readout").textContent = `${new Date(day.times[k] * 1000).toISOString().slice(11, 16)} UTC: sun ${day.elevationDeg[k].toFixed(1)}°, ` +
       `${day.globalLux[k].toPrecision(3)} lx, ${cct}, melanopic EDI ${day.melanopicEdiLux[k].toPrecision(3)} lx`;
   } catch (e) {
     ctx.fillStyle = "#000";
