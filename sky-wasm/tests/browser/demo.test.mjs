@@ -186,11 +186,14 @@ test("the daylight plot is drawn from the bindings' values, which are native sky
   const plotted = await page.evaluate(() => {
     const { day, geometry, marker } = window.skyDemo.daylight;
     const c = document.getElementById("daylight-plot");
-    const rgba = Array.from(c.getContext("2d").getImageData(0, 0, c.width, c.height).data);
+    const data = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+    let b64 = "";
+    for (let k = 0; k < data.length; k += 0x8000) b64 += String.fromCharCode(...data.subarray(k, k + 0x8000));
     const plain = Object.fromEntries(Object.entries(day).map(([k, v]) => [k, Array.from(v)]));
-    return { day: plain, geometry, marker, rgba, width: c.width };
+    return { day: plain, geometry, marker, rgba: btoa(b64), width: c.width };
   });
-  const { day, geometry: g, rgba, width } = plotted;
+  const { day, geometry: g, width } = plotted;
+  const rgba = Buffer.from(plotted.rgba, "base64");
   // Every native sample is a sample of the page's day (its step, 120 s, divides 600 s).
   let compared = 0;
   native.times.forEach((t, n) => {
