@@ -91,15 +91,16 @@ build() {
   cp "$root"/sky-wasm/node_modules/three/build/three.{module,core}.js "$site.tmp/vendor/three/"
   # Binaryen's size optimiser (npm `binaryen`, pinned in sky-wasm/package-lock.json; Debian's is
   # too old for this rustc's output): 214 KB -> 194 KB with the settings of the wasm-release
-  # profile; the tests below run the optimised file.
+  # profile; the tests below run the optimised file. The producers and target-features sections
+  # (which toolchain built it, with which wasm features; 283 bytes) are not needed to run it.
   local wasm_opt="$root/sky-wasm/node_modules/.bin/wasm-opt"
   for f in "$site.tmp/pkg/sky_wasm_bg.wasm" "$out/node/sky_wasm_bg.wasm"; do
-    "$wasm_opt" -Oz "$f" -o "$f.opt" && mv "$f.opt" "$f"
+    "$wasm_opt" -Oz --strip-producers --strip-target-features "$f" -o "$f.opt" && mv "$f.opt" "$f"
   done
   rm -rf "$site"
   mv "$site.tmp" "$site"
 
-  step "size of the .wasm (every model: Preetham, neural with both weight sets, AOAS, SH)"
+  step "size of the .wasm (every model: Preetham, neural with both weight sets, AOAS, SH; SPA; the daylight)"
   local bytes gz
   bytes=$(stat -c %s "$site/pkg/sky_wasm_bg.wasm")
   gz=$(gzip -9c "$site/pkg/sky_wasm_bg.wasm" | wc -c)
