@@ -7,7 +7,8 @@
 #                                 (pkg/ also holds the GPU shaders' module shaders.js and the
 #                                 three.js drop-in three.js; vendor/three/ is the pinned three)
 #   scripts/wasm.sh pack          build, then write the npm package (package.json with the crate's
-#                                 version, the .wasm, JS and TypeScript bindings, shaders.js,
+#                                 version, the .wasm, JS and TypeScript bindings and their
+#                                 snippets/ (sky-wasm/js/f32-text.js), shaders.js,
 #                                 three.js) to target/wasm/package and `npm pack` it into
 #                                 target/wasm/sky-wasm-VERSION.tgz
 #   scripts/wasm.sh serve [PORT]  serve the built site on http://127.0.0.1:PORT/ (default 8000)
@@ -120,7 +121,7 @@ pack() {
     node -e 'let s = ""; process.stdin.on("data", (d) => (s += d)).on("end", () =>
       console.log(JSON.parse(s).packages.find((p) => p.name === "sky-wasm").version))')
   rm -rf "$pkg" && mkdir -p "$pkg"
-  cp "$site_default"/pkg/* "$pkg/"
+  cp -r "$site_default"/pkg/* "$pkg/"
   cp "$root/sky-wasm/js/README.md" "$pkg/"
   node -e 'const fs = require("fs"); const p = JSON.parse(fs.readFileSync(process.argv[1]));
     p.version = process.argv[2]; fs.writeFileSync(process.argv[3], JSON.stringify(p, null, 2) + "\n");' \
