@@ -7,7 +7,8 @@
 #                                 (pkg/ also holds the GPU shaders' module shaders.js and the
 #                                 three.js drop-in three.js; vendor/three/ is the pinned three)
 #   scripts/wasm.sh pack          build, then write the npm package (package.json with the crate's
-#                                 version, the .wasm, JS and TypeScript bindings, shaders.js,
+#                                 version, the .wasm, JS and TypeScript bindings and their
+#                                 snippets/ (sky-wasm/js/f32-text.js), shaders.js,
 #                                 three.js) to target/wasm/package and `npm pack` it into
 #                                 target/wasm/sky-wasm-VERSION.tgz
 #   scripts/wasm.sh serve [PORT]  serve the built site on http://127.0.0.1:PORT/ (default 8000)
@@ -22,6 +23,7 @@
 #                                   surface: exported names, thrown Errors, typed arrays;
 #                                 - browser tests (the demo in Debian's chromium through
 #                                   playwright-core; prints the frame times the demo measures;
+#                                   its daylight plot against native sky-core's values;
 #                                   screenshot in target/wasm/artifacts), each model's GLSL
 #                                   shader in WebGL2 (SwiftShader) against sky-core, the
 #                                   three.js demo page;
@@ -90,15 +92,16 @@ build() {
   cp "$root"/sky-wasm/node_modules/three/build/three.{module,core}.js "$site.tmp/vendor/three/"
   # Binaryen's size optimiser (npm `binaryen`, pinned in sky-wasm/package-lock.json; Debian's is
   # too old for this rustc's output): 214 KB -> 194 KB with the settings of the wasm-release
-  # profile; the tests below run the optimised file.
+  # profile; the tests below run the optimised file. The producers and target-features sections
+  # (which toolchain built it, with which wasm features; 283 bytes) are not needed to run it.
   local wasm_opt="$root/sky-wasm/node_modules/.bin/wasm-opt"
   for f in "$site.tmp/pkg/sky_wasm_bg.wasm" "$out/node/sky_wasm_bg.wasm"; do
-    "$wasm_opt" -Oz "$f" -o "$f.opt" && mv "$f.opt" "$f"
+    "$wasm_opt" -Oz --strip-producers --strip-target-features "$f" -o "$f.opt" && mv "$f.opt" "$f"
   done
   rm -rf "$site"
   mv "$site.tmp" "$site"
 
-  step "size of the .wasm (every model: Preetham, neural with both weight sets, AOAS, SH)"
+  step "size of the .wasm (every model: Preetham, neural with both weight sets, AOAS, SH; SPA; the daylight)"
   local bytes gz
   bytes=$(stat -c %s "$site/pkg/sky_wasm_bg.wasm")
   gz=$(gzip -9c "$site/pkg/sky_wasm_bg.wasm" | wc -c)
@@ -118,7 +121,7 @@ pack() {
     node -e 'let s = ""; process.stdin.on("data", (d) => (s += d)).on("end", () =>
       console.log(JSON.parse(s).packages.find((p) => p.name === "sky-wasm").version))')
   rm -rf "$pkg" && mkdir -p "$pkg"
-  cp "$site_default"/pkg/* "$pkg/"
+  cp -r "$site_default"/pkg/* "$pkg/"
   cp "$root/sky-wasm/js/README.md" "$pkg/"
   node -e 'const fs = require("fs"); const p = JSON.parse(fs.readFileSync(process.argv[1]));
     p.version = process.argv[2]; fs.writeFileSync(process.argv[3], JSON.stringify(p, null, 2) + "\n");' \
@@ -158,7 +161,7 @@ run_tests() {
 
   step "browser: the demos and the GPU shaders in Debian's chromium (playwright-core)"
   (cd "$root/sky-wasm" && SKY_WASM_SITE="$site_default" SKY_WASM_ARTIFACTS="$out/artifacts" \
-    node --test --test-reporter=spec tests/browser/)
+    SKY_NATIVE_VALUES="$native" node --test --test-reporter=spec tests/browser/)
 
   step "the npm tarball installed into a scratch project, imported in node and in a page"
   (cd "$root/sky-wasm" && SKY_WASM_TARBALL="$(ls "$out"/sky-wasm-*.tgz)" \

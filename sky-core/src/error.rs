@@ -43,32 +43,67 @@ pub enum SkyError {
     },
 }
 
-impl fmt::Display for SkyError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+impl SkyError {
+    /// Writes the message (the text of [`Display`](fmt::Display)) into `out`, each number in it
+    /// (a value, a range's ends, a zenith angle) written by `number`. [`Display`](fmt::Display)
+    /// writes them with `f32`'s own `Display`; a caller with another formatter (a smaller one
+    /// for a size-bound build such as the browser's) passes it here.
+    ///
+    /// ```
+    /// use core::fmt::Write;
+    /// use sky_core::SkyError;
+    ///
+    /// let e = SkyError::OutOfRange { parameter: "turbidity", value: 9.0, min: 2.0, max: 6.0 };
+    /// let mut text = String::new();
+    /// e.write_message(&mut text, &|out: &mut String, v| write!(out, "{v:.1}"))?;
+    /// assert_eq!(text, "turbidity = 9.0 is outside the valid range [2.0, 6.0]");
+    /// assert_eq!(e.to_string(), "turbidity = 9 is outside the valid range [2, 6]");
+    /// # Ok::<(), core::fmt::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// What `out` or `number` return.
+    pub fn write_message<W: fmt::Write + ?Sized>(
+        &self,
+        out: &mut W,
+        number: &dyn Fn(&mut W, f32) -> fmt::Result,
+    ) -> fmt::Result {
         match *self {
-            Self::NotFinite { parameter } => write!(f, "{parameter} must be a finite number"),
+            Self::NotFinite { parameter } => write!(out, "{parameter} must be a finite number"),
             Self::OutOfRange {
                 parameter,
                 value,
                 min,
                 max,
-            } => write!(
-                f,
-                "{parameter} = {value} is outside the valid range [{min}, {max}]"
-            ),
-            Self::SunBelowHorizon { zenith } => write!(
-                f,
-                "the sun is below the horizon (zenith {zenith} rad > pi/2), where this model is undefined"
-            ),
+            } => {
+                write!(out, "{parameter} = ")?;
+                number(out, value)?;
+                out.write_str(" is outside the valid range [")?;
+                number(out, min)?;
+                out.write_str(", ")?;
+                number(out, max)?;
+                out.write_str("]")
+            }
+            Self::SunBelowHorizon { zenith } => {
+                out.write_str("the sun is below the horizon (zenith ")?;
+                number(out, zenith)?;
+                out.write_str(" rad > pi/2), where this model is undefined")
+            }
             Self::CapacityExceeded {
                 collection,
                 capacity,
                 needed,
             } => write!(
-                f,
+                out,
                 "{collection}: {needed} needed, but at most {capacity} fit (fixed capacity, no allocation)"
             ),
         }
+    }
+}
+
+impl fmt::Display for SkyError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.write_message(f, &|f, v| write!(f, "{v}"))
     }
 }
 

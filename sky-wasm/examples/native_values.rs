@@ -5,14 +5,21 @@
 //! `cargo run -p sky-wasm --example native_values > native_values.json` and hands the file to
 //! their build.
 //!
+//! Also: the clear-sky daylight of a few days (sky-core's `Daylight` at the controller's sun,
+//! for sky-wasm's `DaylightDay`) and Rust's own `Display` text of a thousand `f32`s across the
+//! range (for the error messages' numbers, which sky-wasm writes without `core::fmt`).
+//!
 //! Everything here calls sky-core directly (not sky-wasm's bindings), so the comparison checks
 //! the bindings as well as the wasm32 code generation.
 
 use std::fmt::Write as _;
 
 use sky_core::aoas::{AoasSky, DayCycle, Preset, Scattering};
+use sky_core::controller::Settings;
+use sky_core::daylight::Daylight;
 use sky_core::neural::{NeuralWeights, pretrained};
 use sky_core::sh::ShSky;
+use sky_core::solar::{Site, UtcTime};
 use sky_core::{NeuralSky, PreethamSky, SkyError, Sun, Vec3, geom};
 use sky_wasm::projection::{Kind, Projection};
 
@@ -81,6 +88,135 @@ fn floats(out: &mut String, values: impl IntoIterator<Item = f32>) {
     out.push(']');
 }
 
+/// The day's series that `sky_wasm::daylight::DaylightDay::at` gives for the same arguments
+/// (year, month, day, start, end and step in seconds, latitude, longitude, elevation, optical
+/// depth), as a JSON object; NaN (no CCT) as null.
+#[allow(clippy::too_many_arguments, clippy::cast_possible_truncation)]
+fn daylight_day(
+    json: &mut String,
+    (year, month, day): (i32, u32, u32),
+    (start, end, step): (f64, f64, f64),
+    (latitude, longitude, elevation): (f64, f64, f64),
+    aod: f32,
+) -> anyhow::Result<()> {
+    let site = Site::new(latitude, longitude, elevation)?;
+    let sun = Settings::default().sun;
+    let mut columns: [(&str, Vec<f64>); 9] = [
+        ("times", vec![]),
+        ("elevationDeg", vec![]),
+        ("globalLux", vec![]),
+        ("diffuseLux", vec![]),
+        ("directLux", vec![]),
+        ("x", vec![]),
+        ("y", vec![]),
+        ("cctK", vec![]),
+        ("melanopicEdiLux", vec![]),
+    ];
+    for k in 0.. {
+        let t = start + f64::from(k) * step;
+        if t > end {
+            break;
+        }
+        let (hour, minute) = ((t / 3600.0) as u32, (t / 60.0) as u32 % 60);
+        let time = UtcTime::new(
+            year,
+            month,
+            day,
+            hour,
+            minute,
+            t - f64::from(hour * 3600 + minute * 60),
+        )?;
+        let position = sun.position(&time, &site)?;
+        let light = Daylight::new(position.sun(), aod)?;
+        let (x, y) = light.chromaticity();
+        let row = [
+            t,
+            f64::from(position.elevation_deg() as f32),
+            f64::from(light.global().y),
+            f64::from(light.diffuse().y),
+            f64::from(light.direct().y),
+            f64::from(x),
+            f64::from(y),
+            light.cct().map_or(f64::NAN, |c| f64::from(c.kelvin)),
+            f64::from(light.melanopic_edi()),
+        ];
+        for ((_, column), v) in columns.iter_mut().zip(row) {
+            column.push(v);
+        }
+    }
+    let _ = write!(
+        json,
+        r#"{{"args":[{year},{month},{day},{start},{end},{step},{latitude},{longitude},{elevation},{aod}]"#
+    );
+    for (name, column) in &columns {
+        let _ = write!(json, r#","{name}":["#);
+        for (i, v) in column.iter().enumerate() {
+            let sep = if i > 0 { "," } else { "" };
+            // f32 columns print as the shortest decimal of their f32 value; times as f64.
+            if v.is_nan() {
+                let _ = write!(json, "{sep}null");
+            } else if *name == "times" {
+                let _ = write!(json, "{sep}{v}");
+            } else {
+                let _ = write!(json, "{sep}{}", *v as f32);
+            }
+        }
+        json.push(']');
+    }
+    json.push('}');
+    Ok(())
+}
+
+/// A thousand `f32`s across the range (bit patterns of a xorshift sequence, whole numbers,
+/// decimals and the ends) with Rust's `Display` text of each, as `[bits, "text"]`.
+fn float_texts(json: &mut String) {
+    let mut values = vec![
+        0.0f32,
+        -0.0,
+        1.0,
+        9.0,
+        2.5,
+        0.05,
+        0.8,
+        0.43,
+        1.8,
+        0.1,
+        86_400.0,
+        86_399.999,
+        1e-45,
+        f32::MIN_POSITIVE,
+        f32::MAX,
+        f32::MIN,
+        1e-7,
+        1.2e-7,
+        1e21,
+        123_456_790.0,
+        f32::NAN,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        2010.0,
+        2110.0,
+        0.000_123,
+        16_777_216.0,
+    ];
+    let mut state: u32 = 0x9E37_79B9;
+    while values.len() < 1000 {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        let v = f32::from_bits(state);
+        if v.is_finite() {
+            values.push(v);
+        }
+    }
+    json.push('[');
+    for (i, v) in values.iter().enumerate() {
+        let sep = if i > 0 { "," } else { "" };
+        let _ = write!(json, r#"{sep}[{},"{v}"]"#, v.to_bits());
+    }
+    json.push(']');
+}
+
 fn main() -> anyhow::Result<()> {
     let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
     std::env::set_current_dir(root)?;
@@ -138,7 +274,38 @@ fn main() -> anyhow::Result<()> {
         floats(&mut json, image);
         json.push('}');
     }
-    json.push_str("]}");
+    json.push_str("],\"daylight\":[");
+    // Vienna at midsummer, Longyearbyen in the polar night (twilight only), Singapore at the
+    // equinox from 1:00 UTC in steps of 333.5 s under a hazy sky.
+    let days = [
+        (
+            (2026, 6, 21),
+            (0.0, 86_399.0, 600.0),
+            (48.21, 16.37, 190.0),
+            0.43,
+        ),
+        (
+            (2030, 12, 21),
+            (0.0, 86_399.0, 900.0),
+            (78.22, 15.63, 10.0),
+            0.1,
+        ),
+        (
+            (2026, 3, 20),
+            (3_600.0, 40_000.0, 333.5),
+            (1.35, 103.82, 15.0),
+            0.8,
+        ),
+    ];
+    for (i, (date, times, site, aod)) in days.into_iter().enumerate() {
+        if i > 0 {
+            json.push(',');
+        }
+        daylight_day(&mut json, date, times, site, aod)?;
+    }
+    json.push_str("],\"floats\":");
+    float_texts(&mut json);
+    json.push('}');
     println!("{json}");
     Ok(())
 }

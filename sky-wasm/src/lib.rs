@@ -25,6 +25,8 @@
 //! The values are sky-core's, bit for bit: the same code compiled for wasm32 (the wasm-bindgen
 //! tests in `tests/wasm.rs` check every model against the native build to 1e-6 relative).
 
+pub mod daylight;
+pub mod number;
 pub mod projection;
 pub mod srgb8;
 
@@ -47,9 +49,7 @@ const MIDDLE_GREY: f32 = 0.18;
 /// [`Sky::auto_exposure`]: 32 × 32 gives 812 directions.
 const EXPOSURE_GRID: u32 = 32;
 
-fn js_error(e: impl core::fmt::Display) -> JsError {
-    JsError::new(&e.to_string())
-}
+use number::{display_error, js_error};
 
 /// The model behind a [`Sky`].
 // One per JavaScript `Sky`: 424 bytes are nothing to save; the AOAS sky (its style holds up to 64
@@ -149,7 +149,7 @@ impl Sky {
         sun_azimuth: f32,
         turbidity: f32,
     ) -> Result<Sky, JsError> {
-        let weights = NeuralWeights::<12>::decode(bytes).map_err(js_error)?;
+        let weights = NeuralWeights::<12>::decode(bytes).map_err(display_error)?;
         Self::neural_with(&weights, sun_zenith, sun_azimuth, turbidity)
     }
 
@@ -260,7 +260,7 @@ impl Sky {
         Ok(match &self.model {
             Model::Preetham(s) => models::preetham::params(s).to_vec(),
             Model::Neural(s) => models::neural::params(s),
-            Model::Aoas(s) => models::aoas::params(s).map_err(js_error)?.to_vec(),
+            Model::Aoas(s) => models::aoas::params(s).map_err(display_error)?.to_vec(),
             Model::Sh(s) => models::sh::params(s).to_vec(),
         })
     }
@@ -536,29 +536,16 @@ impl Renderer {
         exposure: f32,
     ) -> Result<(), JsError> {
         self.check_len(out.length(), 4, "out")?;
-        let lit_sphere = match (&sky.model, self.projection.kind()) {
-            (Model::Sh(sh), Kind::Sphere) => Some(sh),
+        let source = match (&sky.model, self.projection.kind()) {
+            (Model::Sh(sh), Kind::Sphere) => Source::LitSphere(sh),
             (_, Kind::Sphere) => {
                 return Err(JsError::new(
                     "the sphere is lit by a spherical-harmonics sky: build it with Sky.sh",
                 ));
             }
-            _ => None,
+            _ => Source::Sky(&sky.model),
         };
-        let mut rgb = [Vec3::ZERO; CHUNK];
-        let p = &self.projection;
-        for (dirs, pixels) in p.directions().chunks(CHUNK).zip(p.pixels().chunks(CHUNK)) {
-            let rgb = &mut rgb[..dirs.len()];
-            match lit_sphere {
-                Some(sh) => {
-                    for (o, n) in rgb.iter_mut().zip(dirs) {
-                        *o = sh.irradiance(*n) * core::f32::consts::FRAC_1_PI;
-                    }
-                }
-                None => sky.model.rgb_batch(dirs, rgb),
-            }
-            write_srgb(&self.table, &mut self.srgb, pixels, rgb, exposure);
-        }
+        self.fill_srgb(&source, exposure);
         out.copy_from(&self.srgb);
         Ok(())
     }
@@ -577,17 +564,7 @@ impl Renderer {
         exposure: f32,
     ) -> Result<(), JsError> {
         self.check_len(out.length(), 4, "out")?;
-        let (mut rgb_a, mut rgb_b) = ([Vec3::ZERO; CHUNK], [Vec3::ZERO; CHUNK]);
-        let p = &self.projection;
-        for (dirs, pixels) in p.directions().chunks(CHUNK).zip(p.pixels().chunks(CHUNK)) {
-            let (rgb_a, rgb_b) = (&mut rgb_a[..dirs.len()], &mut rgb_b[..dirs.len()]);
-            a.model.rgb_batch(dirs, rgb_a);
-            b.model.rgb_batch(dirs, rgb_b);
-            for (x, y) in rgb_a.iter_mut().zip(rgb_b.iter()) {
-                *x = (*x - *y).abs();
-            }
-            write_srgb(&self.table, &mut self.srgb, pixels, rgb_a, exposure);
-        }
+        self.fill_srgb(&Source::Difference(&a.model, &b.model), exposure);
         out.copy_from(&self.srgb);
         Ok(())
     }
@@ -615,6 +592,47 @@ impl Renderer {
         }
         out.copy_from(&self.linear);
         Ok(())
+    }
+}
+
+/// What a frame of [`Renderer`] shows per pixel.
+enum Source<'a> {
+    /// The sky's radiance.
+    Sky(&'a Model),
+    /// |a − b| per channel.
+    Difference(&'a Model, &'a Model),
+    /// A white diffuse sphere's radiance, E(n)/π, lit by the SH sky.
+    LitSphere(&'a ShSky),
+}
+
+impl Renderer {
+    /// The 8-bit sRGB RGBA frame of `source` × `exposure` in `self.srgb`: one copy of the
+    /// loop for every source (the .wasm has a size budget; the match per chunk of 256 pixels
+    /// costs nothing measurable).
+    #[inline(never)]
+    fn fill_srgb(&mut self, source: &Source, exposure: f32) {
+        let (mut rgb, mut other) = ([Vec3::ZERO; CHUNK], [Vec3::ZERO; CHUNK]);
+        let p = &self.projection;
+        for (dirs, pixels) in p.directions().chunks(CHUNK).zip(p.pixels().chunks(CHUNK)) {
+            let rgb = &mut rgb[..dirs.len()];
+            match source {
+                Source::Sky(m) => m.rgb_batch(dirs, rgb),
+                Source::Difference(a, b) => {
+                    let other = &mut other[..dirs.len()];
+                    a.rgb_batch(dirs, rgb);
+                    b.rgb_batch(dirs, other);
+                    for (x, y) in rgb.iter_mut().zip(other.iter()) {
+                        *x = (*x - *y).abs();
+                    }
+                }
+                Source::LitSphere(sh) => {
+                    for (o, n) in rgb.iter_mut().zip(dirs) {
+                        *o = sh.irradiance(*n) * core::f32::consts::FRAC_1_PI;
+                    }
+                }
+            }
+            write_srgb(&self.table, &mut self.srgb, pixels, rgb, exposure);
+        }
     }
 }
 

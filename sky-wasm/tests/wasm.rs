@@ -7,7 +7,11 @@
 //!   fisheye image through `Renderer::render_linear`;
 //! * errors: sky-core's errors become `JsError`s (JavaScript `Error`s) carrying sky-core's
 //!   message, and so do sky-wasm's own (unknown names, an output array of the wrong length);
-//! * images: the 8-bit renderings are not blank and respond to exposure and to the sun.
+//! * images: the 8-bit renderings are not blank and respond to exposure and to the sun;
+//! * daylight: `DaylightDay` gives native sky-core's daylight series, and refuses bad input with
+//!   a message naming the parameter and its range;
+//! * numbers: the error messages' numbers, written without `core::fmt`, are Rust's `Display`
+//!   text of the same `f32`s.
 //!
 //! The native values are the JSON of `cargo run -p sky-wasm --example native_values`, an
 //! independent host build of the same sky-core code, embedded at compile time from the file that
@@ -18,9 +22,12 @@
 
 use serde::Deserialize;
 use sky_core::aoas::{AoasSky, DayCycle, Preset, Scattering};
+use sky_core::daylight::Daylight;
 use sky_core::neural::{NeuralWeights, pretrained};
 use sky_core::sh::ShSky;
 use sky_core::{NeuralSky, PreethamSky, SkyError, Sun};
+use sky_wasm::daylight::DaylightDay;
+use sky_wasm::number::f32_text;
 use sky_wasm::{Renderer, Sky, aoas_presets};
 use wasm_bindgen::{JsCast, JsError, JsValue};
 use wasm_bindgen_test::{console_log, wasm_bindgen_test};
@@ -41,6 +48,26 @@ struct Native {
     directions: Vec<[f32; 2]>,
     fisheye: Size,
     skies: Vec<NativeSky>,
+    daylight: Vec<NativeDay>,
+    /// `f32` bit patterns and Rust's `Display` text of each.
+    floats: Vec<(u32, String)>,
+}
+
+/// One day's daylight series; CCT `None` where sky-core has none (NaN in sky-wasm).
+#[derive(Deserialize)]
+#[serde(rename_all = "camelCase")]
+struct NativeDay {
+    /// Year, month, day, start, end, step (s), latitude, longitude, elevation, optical depth.
+    args: (i32, u32, u32, f64, f64, f64, f64, f64, f64, f32),
+    times: Vec<f64>,
+    elevation_deg: Vec<f32>,
+    global_lux: Vec<f32>,
+    diffuse_lux: Vec<f32>,
+    direct_lux: Vec<f32>,
+    x: Vec<f32>,
+    y: Vec<f32>,
+    cct_k: Vec<Option<f32>>,
+    melanopic_edi_lux: Vec<f32>,
 }
 
 #[derive(Deserialize)]
@@ -411,4 +438,167 @@ fn the_sphere_lit_by_the_sh_sky_is_brighter_on_the_suns_side() {
         lum(32, 56)
     );
     assert_eq!(pixel(&rgba, 64, 0, 0)[3], 0, "corner off the sphere");
+}
+
+fn daylight_day(
+    args: (i32, u32, u32, f64, f64, f64, f64, f64, f64, f32),
+) -> Result<DaylightDay, JsError> {
+    let (year, month, day, start, end, step, lat, lon, elevation, aod) = args;
+    DaylightDay::at(year, month, day, start, end, step, lat, lon, elevation, aod)
+}
+
+#[wasm_bindgen_test]
+fn daylight_days_match_native() {
+    let native = native();
+    assert!(native.daylight.len() >= 3);
+    for want in &native.daylight {
+        let got = ok(daylight_day(want.args));
+        assert_eq!(got.times(), want.times, "{:?}: times", want.args);
+        let cct: Vec<f32> = want.cct_k.iter().map(|c| c.unwrap_or(f32::NAN)).collect();
+        let got_cct = got.cct_k();
+        assert!(
+            got_cct
+                .iter()
+                .zip(&cct)
+                .all(|(g, w)| g.is_nan() == w.is_nan()),
+            "{:?}: CCT defined at other samples",
+            want.args
+        );
+        let columns = [
+            ("elevationDeg", got.elevation_deg(), &want.elevation_deg),
+            ("globalLux", got.global_lux(), &want.global_lux),
+            ("diffuseLux", got.diffuse_lux(), &want.diffuse_lux),
+            ("directLux", got.direct_lux(), &want.direct_lux),
+            ("x", got.x(), &want.x),
+            ("y", got.y(), &want.y),
+            (
+                "melanopicEdiLux",
+                got.melanopic_edi_lux(),
+                &want.melanopic_edi_lux,
+            ),
+        ];
+        let defined = |v: &[f32]| {
+            v.iter()
+                .copied()
+                .filter(|c| !c.is_nan())
+                .collect::<Vec<_>>()
+        };
+        let worst_cct = worst_relative(&defined(&got_cct), &defined(&cct));
+        console_log!(
+            "daylight {:?}: {} samples, CCT worst relative difference {worst_cct}",
+            want.args,
+            want.times.len()
+        );
+        assert!(
+            worst_cct <= RELATIVE_BOUND,
+            "{:?}: CCT {worst_cct}",
+            want.args
+        );
+        for (name, got, want_column) in columns {
+            // The direct light is exactly 0 below the horizon on both sides.
+            let worst = worst_relative(&got, want_column);
+            assert!(
+                worst <= RELATIVE_BOUND,
+                "{:?}: {name} worst relative difference {worst}",
+                want.args
+            );
+        }
+    }
+}
+
+#[wasm_bindgen_test]
+fn daylight_bad_input_names_the_parameter_and_its_range() {
+    let vienna = (2026, 6, 21, 0.0, 86_399.0, 600.0, 48.21, 16.37, 190.0, 0.43);
+    let sun = Sun::new(0.5, 0.0).expect("a valid sun");
+    assert_eq!(
+        error(daylight_day((
+            vienna.0, vienna.1, vienna.2, 0.0, 100.0, 10.0, 48.21, 16.37, 190.0, 0.9
+        ))),
+        Daylight::new(sun, 0.9)
+            .expect_err("optical depth 0.9")
+            .to_string()
+    );
+    assert_eq!(
+        error(daylight_day((
+            2026,
+            6,
+            21,
+            0.0,
+            100.0,
+            10.0,
+            48.21,
+            16.37,
+            190.0,
+            f32::NAN
+        ))),
+        "aerosol optical depth = NaN is outside the valid range [0.05, 0.8]"
+    );
+    let cases = [
+        (
+            (2026, 6, 21, -1.0, 100.0, 10.0, 48.21, 16.37, 190.0, 0.43),
+            "start [s after 0:00 UTC] = -1 is outside the valid range [0, 86399]",
+        ),
+        (
+            (2026, 6, 21, 500.0, 100.0, 10.0, 48.21, 16.37, 190.0, 0.43),
+            "end [s after 0:00 UTC] = 100 is outside the valid range [500, 86399]",
+        ),
+        (
+            (2026, 6, 21, 0.0, 86_400.0, 10.0, 48.21, 16.37, 190.0, 0.43),
+            "end [s after 0:00 UTC] = 86400 is outside the valid range [0, 86399]",
+        ),
+        (
+            (2026, 6, 21, 0.0, 100.0, 0.0, 48.21, 16.37, 190.0, 0.43),
+            "step [s] = 0 is outside the valid range [1, 86400]",
+        ),
+        (
+            (2026, 6, 21, 0.0, 100.0, f64::NAN, 48.21, 16.37, 190.0, 0.43),
+            "step [s] = NaN is outside the valid range [1, 86400]",
+        ),
+        (
+            (2026, 6, 21, 0.0, 100.0, 10.0, 95.0, 16.37, 190.0, 0.43),
+            "",
+        ),
+        (
+            (2026, 2, 30, 0.0, 100.0, 10.0, 48.21, 16.37, 190.0, 0.43),
+            "day = 30 is outside the valid range [1, 28]",
+        ),
+        (
+            (1950, 6, 21, 0.0, 100.0, 10.0, 48.21, 16.37, 190.0, 0.43),
+            "year (fast sun position, Grena 2012) = 1950 is outside the valid range [2010, 2110]",
+        ),
+    ];
+    for (args, text) in cases {
+        let got = error(daylight_day(args));
+        if text.is_empty() {
+            let native = sky_core::solar::Site::new(args.6, args.7, args.8)
+                .expect_err("latitude 95")
+                .to_string();
+            assert_eq!(got, native);
+            assert!(got.starts_with("latitude"), "{got}");
+        } else {
+            assert_eq!(got, text, "{args:?}");
+        }
+    }
+    assert!(ok(daylight_day(vienna)).times().len() == 144);
+}
+
+#[wasm_bindgen_test]
+fn error_numbers_are_rusts_display_text() {
+    let native = native();
+    assert!(native.floats.len() >= 1000);
+    let wrong: Vec<_> = native
+        .floats
+        .iter()
+        .filter_map(|(bits, text)| {
+            let got = f32_text(f32::from_bits(*bits));
+            (got != *text).then(|| format!("{bits:#010x}: {got} vs Rust's {text}"))
+        })
+        .collect();
+    assert!(
+        wrong.is_empty(),
+        "{} of {} differ: {:?}",
+        wrong.len(),
+        native.floats.len(),
+        &wrong[..wrong.len().min(10)]
+    );
 }

@@ -1,6 +1,7 @@
 // The demo: every control redraws on `input`, so the image follows a slider while it is dragged.
 // Each view is one call into WebAssembly that fills a canvas's ImageData.
-import init, { Sky, Renderer, SunPosition, aoasPresets } from "./pkg/sky_wasm.js";
+import init, { Sky, Renderer, SunPosition, DaylightDay, aoasPresets } from "./pkg/sky_wasm.js";
+import { drawDaylightPlot } from "./daylight-plot.js";
 
 await init();
 
@@ -50,6 +51,60 @@ function sunFromTime() {
 
 /** Metres above sea level of the chosen place (0 for a place typed in). */
 let placeElevation = 190;
+
+/** Seconds between the daylight plot's samples. */
+const DAYLIGHT_STEP_S = 120;
+/** The plotted day: its inputs, as a key, and its series (sky-wasm's DaylightDay, one call). */
+let daylight = { key: "", day: null };
+
+/** The daylight of the date and place controls' day, recomputed when they or the aerosol
+ * optical depth change. */
+function daylightDay() {
+  const [year, month, day] = $("date").value.split("-").map(Number);
+  const [lat, lon] = [Number($("latitude").value), Number($("longitude").value)];
+  const aod = Number($("aod").value);
+  const key = [year, month, day, lat, lon, placeElevation, aod].join(",");
+  if (key !== daylight.key) {
+    daylight = { key, day: null };
+    if (!year) throw new Error("date: enter a date (years 2010 to 2110 for the daylight plot)");
+    const series = DaylightDay.at(year, month, day, 0, 86399, DAYLIGHT_STEP_S, lat, lon,
+      placeElevation, aod);
+    try {
+      daylight.day = {
+        times: series.times, elevationDeg: series.elevationDeg, globalLux: series.globalLux,
+        diffuseLux: series.diffuseLux, directLux: series.directLux, x: series.x, y: series.y,
+        cctK: series.cctK, melanopicEdiLux: series.melanopicEdiLux,
+      };
+    } finally {
+      series.free();
+    }
+  }
+  return daylight.day;
+}
+
+/** The plot of the day's daylight with the marker at the time control's value, and the values
+ * there (the sample at or before it). */
+function drawDaylight() {
+  const canvas = $("daylight-plot");
+  const ctx = canvas.getContext("2d");
+  try {
+    const day = daylightDay();
+    const t = Number($("time").value);
+    const geometry = drawDaylightPlot(ctx, day, t);
+    const k = Math.min(day.times.length - 1, Math.floor(t / DAYLIGHT_STEP_S));
+    const cct = Number.isNaN(day.cctK[k]) ? "no CCT (|Duv| > 0.05)" : `${Math.round(day.cctK[k])} K`;
+    $("daylight-error").textContent = "";
+    window.skyDemo.daylight = { key: daylight.key, day, geometry, marker: t };
+    $("daylight-readout").textContent = `${new Date(day.times[k] * 1000).toISOString().slice(11, 16)} UTC: sun ${day.elevationDeg[k].toFixed(1)}°, ` +
+      `${day.globalLux[k].toPrecision(3)} lx, ${cct}, melanopic EDI ${day.melanopicEdiLux[k].toPrecision(3)} lx`;
+  } catch (e) {
+    ctx.fillStyle = "#000";
+    ctx.fillRect(0, 0, canvas.width, canvas.height);
+    window.skyDemo.daylight = null;
+    $("daylight-readout").textContent = "";
+    $("daylight-error").textContent = e.message;
+  }
+}
 
 function readControls() {
   const p = {
@@ -182,6 +237,8 @@ function drawSphere(p) {
 }
 
 function draw() {
+  $("aod-value").value = Number($("aod").value).toFixed(2);
+  drawDaylight();
   try {
     const p = readControls();
     syncSunControls(p);
@@ -253,9 +310,11 @@ for (const id of ["latitude", "longitude"]) {
   });
 }
 for (const id of ["model", "view", "sun-zenith", "sun-azimuth", "turbidity", "exposure",
-  "sun-from", "latitude", "longitude", "date", "time"]) {
+  "sun-from", "latitude", "longitude", "date", "time", "aod"]) {
   $(id).addEventListener("input", requestDraw);
 }
 $("measure").addEventListener("click", measure);
+/** What the browser tests read: the plotted day and its geometry. */
+window.skyDemo = { daylight: null };
 document.body.dataset.ready = "true";
 draw();

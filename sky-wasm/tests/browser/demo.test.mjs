@@ -3,7 +3,8 @@
 // sky has, reacts to its controls, and measures its own frame time, which this test prints.
 //
 // SKY_WASM_SITE: the built site (scripts/wasm.sh build); SKY_WASM_ARTIFACTS: where the
-// screenshot goes; CHROMIUM: the browser (default /usr/bin/chromium).
+// screenshot goes; SKY_NATIVE_VALUES: native sky-core's values (sky-wasm/examples/native_values.rs);
+// CHROMIUM: the browser (default /usr/bin/chromium).
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
 import { readFile, mkdir } from "node:fs/promises";
@@ -13,6 +14,7 @@ import { NO_GPU, launch, serve } from "./harness.mjs";
 const root = path.resolve(import.meta.dirname, "../../..");
 const site = process.env.SKY_WASM_SITE ?? path.join(root, "target/wasm/site");
 const artifacts = process.env.SKY_WASM_ARTIFACTS ?? path.join(root, "target/wasm/artifacts");
+const nativeFile = process.env.SKY_NATIVE_VALUES ?? path.join(root, "target/wasm/native_values.json");
 let server, browser, page, url, problems;
 
 before(async () => {
@@ -172,6 +174,80 @@ test("date, time and place put the sun where pvlib's SPA does (within 0.01°)", 
   assert.match(await page.textContent("#error"), /latitude.*95.*-90.*90/);
   await page.evaluate(() => { document.getElementById("latitude").value = "48.21"; });
   await set({ "sun-from": "angles", "sun-zenith": 40 });
+  assert.deepEqual(problems, []);
+});
+
+test("the daylight plot is drawn from the bindings' values, which are native sky-core's", async () => {
+  // The native values' first day: Vienna, 21 June 2026, every 600 s, optical depth 0.43.
+  const native = JSON.parse(await readFile(nativeFile, "utf8")).daylight[0];
+  assert.deepEqual(native.args.slice(0, 3), [2026, 6, 21]);
+  await set({ model: "preetham", view: "single", place: "48.21,16.37,190", date: "2026-06-21",
+    aod: native.args[9], time: 11 * 3600, "sun-from": "time" });
+  const plotted = await page.evaluate(() => {
+    const { day, geometry, marker } = window.skyDemo.daylight;
+    const c = document.getElementById("daylight-plot");
+    const data = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+    let b64 = "";
+    for (let k = 0; k < data.length; k += 0x8000) b64 += String.fromCharCode(...data.subarray(k, k + 0x8000));
+    const plain = Object.fromEntries(Object.entries(day).map(([k, v]) => [k, Array.from(v)]));
+    return { day: plain, geometry, marker, rgba: btoa(b64), width: c.width };
+  });
+  const { day, geometry: g, width } = plotted;
+  const rgba = Buffer.from(plotted.rgba, "base64");
+  // Every native sample is a sample of the page's day (its step, 120 s, divides 600 s).
+  let compared = 0;
+  native.times.forEach((t, n) => {
+    const k = day.times.indexOf(t);
+    assert.ok(k >= 0, `the plot has no sample at ${t} s`);
+    for (const name of ["globalLux", "cctK", "melanopicEdiLux", "elevationDeg"]) {
+      const [got, want] = [day[name][k], native[name][n]];
+      if (want === null) assert.ok(Number.isNaN(got), `${name} at ${t} s: ${got}, native has none`);
+      else assert.ok(Math.abs(got - want) <= 1e-6 * Math.abs(want), `${name} at ${t} s: ${got} vs native ${want}`);
+    }
+    compared++;
+  });
+  assert.ok(compared >= 100, `${compared} samples compared`);
+  // The curves are where those values go on the axes: the plot's colour within 2 px.
+  const hex = (c) => [1, 3, 5].map((i) => parseInt(c.slice(i, i + 2), 16));
+  const near = (x, y, colour) => {
+    for (let dy = -2; dy <= 2; dy++) for (let dx = -2; dx <= 2; dx++) {
+      const k = (Math.round(y + dy) * width + Math.round(x + dx)) * 4;
+      if (colour.every((c, i) => Math.abs(rgba[k + i] - c) <= 40)) return true;
+    }
+    return false;
+  };
+  const xOf = (t) => g.left + (t / 3600 / 24) * (g.right - g.left);
+  const yOf = ([lo, hi], v) => g.bottom - ((Math.log10(v) - Math.log10(lo)) / (Math.log10(hi) - Math.log10(lo))) * (g.bottom - g.top);
+  for (const hour of [1, 4, 8, 11, 15, 18.5, 21]) {
+    const n = native.times.indexOf(hour * 3600);
+    const t = native.times[n];
+    // By day the two lux curves nearly coincide, and the EDI is drawn over the global.
+    const [yGlobal, yEdi] = [yOf(g.lux, native.globalLux[n]), yOf(g.lux, native.melanopicEdiLux[n])];
+    const covered = Math.abs(yGlobal - yEdi) < 3;
+    assert.ok(near(xOf(t), yGlobal, hex(g.colours.global)) || (covered && near(xOf(t), yGlobal, hex(g.colours.edi))),
+      `global illuminance at ${hour} h`);
+    assert.ok(near(xOf(t), yEdi, hex(g.colours.edi)), `melanopic EDI at ${hour} h`);
+    if (native.cctK[n] !== null && hour > 3 && hour < 19) {
+      assert.ok(near(xOf(t), yOf(g.kelvin, native.cctK[n]), hex(g.colours.cct)), `CCT at ${hour} h`);
+    }
+  }
+  // The marker at 11:00 UTC, a dashed white line.
+  const column = [];
+  for (let y = g.top; y < g.bottom; y++) column.push(rgba[(y * width + Math.round(xOf(11 * 3600))) * 4]);
+  assert.ok(column.filter((v) => v > 200).length > 0.3 * column.length, "the marker is drawn at 11:00");
+  console.log(`  daylight plot: ${compared} samples equal native sky-core's; at 11:00 UTC ${native.globalLux[native.times.indexOf(39600)]} lx`);
+  // Outside the fast sun's years the plot says so, and the sky still draws by SPA.
+  await page.evaluate(() => {
+    const d = document.getElementById("date");
+    d.value = "1950-06-21";
+    d.dispatchEvent(new Event("input", { bubbles: true }));
+    return new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));
+  });
+  assert.equal(await page.textContent("#daylight-error"),
+    "year (fast sun position, Grena 2012) = 1950 is outside the valid range [2010, 2110]");
+  assert.equal(await page.textContent("#error"), "");
+  await set({ date: "2026-06-21", "sun-from": "angles" });
+  assert.equal(await page.textContent("#daylight-error"), "");
   assert.deepEqual(problems, []);
 });
 

@@ -20,7 +20,9 @@ import path from "node:path";
 
 const root = path.resolve(import.meta.dirname, "../../..");
 const pkg = process.env.SKY_WASM_NODE_PKG ?? path.join(root, "target/wasm/node/sky_wasm.js");
-const { Sky, Renderer, aoasPresets } = createRequire(import.meta.url)(pkg);
+const { Sky, Renderer, DaylightDay, aoasPresets, daylightMinAod, daylightMaxAod, daylightDefaultAod } =
+  createRequire(import.meta.url)(pkg);
+const nativeFile = process.env.SKY_NATIVE_VALUES ?? path.join(root, "target/wasm/native_values.json");
 
 test("the API is exported under its JavaScript names", () => {
   for (const name of ["preetham", "neural", "neuralFromBytes", "aoas", "aoasWithSun", "sh", "shUnfiltered"]) {
@@ -35,6 +37,11 @@ test("the API is exported under its JavaScript names", () => {
   for (const name of ["renderSrgb", "renderDifferenceSrgb", "renderLinear", "free"]) {
     assert.equal(typeof Renderer.prototype[name], "function", `renderer.${name}`);
   }
+  assert.equal(typeof DaylightDay.at, "function", "DaylightDay.at");
+  for (const name of ["times", "elevationDeg", "globalLux", "diffuseLux", "directLux", "x", "y", "cctK", "melanopicEdiLux"]) {
+    assert.ok(Object.getOwnPropertyDescriptor(DaylightDay.prototype, name)?.get, `daylightDay.${name} getter`);
+  }
+  assert.deepEqual([daylightMinAod(), daylightMaxAod(), daylightDefaultAod()].map((v) => Number(v.toFixed(6))), [0.05, 0.8, 0.43]);
   const presets = aoasPresets();
   assert.ok(Array.isArray(presets) && presets.includes("coral"), String(presets));
 });
@@ -86,8 +93,7 @@ test("renderers write into the caller's typed arrays", () => {
 });
 
 test("the shipped module (after wasm-opt) gives native sky-core's values to 1e-6", () => {
-  const file = process.env.SKY_NATIVE_VALUES ?? path.join(root, "target/wasm/native_values.json");
-  const native = JSON.parse(readFileSync(file, "utf8"));
+  const native = JSON.parse(readFileSync(nativeFile, "utf8"));
   assert.ok(native.skies.length >= 10, `${native.skies.length} skies`);
   for (const { sky: { kind, args }, rgb } of native.skies) {
     const call = kind === "neuralFromBytes"
@@ -121,4 +127,41 @@ test("rgbBatch gives rgb's values; shaderParams and irradiance reach JavaScript"
   const sh = Sky.sh(0.9, 2.0, 3, 3);
   assert.ok(sh.irradiance(0, 0)[1] > 1000, "lux-scale irradiance from above");
   assert.equal(Sky.shUnfiltered(0.9, 2.0, 3, 3).shaderParams().length, 4 * 49);
+});
+
+test("DaylightDay: one call per day, typed arrays, native sky-core's daylight to 1e-6", () => {
+  const native = JSON.parse(readFileSync(nativeFile, "utf8"));
+  assert.ok(native.daylight.length >= 3);
+  for (const want of native.daylight) {
+    const day = DaylightDay.at(...want.args);
+    assert.ok(day.times instanceof Float64Array && day.globalLux instanceof Float32Array);
+    assert.deepEqual(Array.from(day.times), want.times);
+    for (const name of ["elevationDeg", "globalLux", "diffuseLux", "directLux", "x", "y", "cctK", "melanopicEdiLux"]) {
+      const got = day[name];
+      assert.equal(got.length, want[name].length, name);
+      let worst = 0;
+      want[name].forEach((w, k) => {
+        // CCT: null in the native values (sky-core's None) is NaN here.
+        if (w === null) return assert.ok(Number.isNaN(got[k]), `${name}[${k}] = ${got[k]}, native has none`);
+        worst = Math.max(worst, w === got[k] ? 0 : Math.abs(got[k] - w) / Math.abs(w));
+      });
+      assert.ok(worst <= 1e-6, `${JSON.stringify(want.args)} ${name}: worst relative difference ${worst}`);
+    }
+    day.free();
+  }
+});
+
+test("DaylightDay: bad input throws an Error naming the parameter and its range", () => {
+  const vienna = [2026, 6, 21, 0, 86399, 600, 48.21, 16.37, 190];
+  const cases = [
+    [[...vienna, 0.9], "aerosol optical depth = 0.9 is outside the valid range [0.05, 0.8]"],
+    [[2026, 6, 21, 0, 86399, 0.5, 48.21, 16.37, 190, 0.43], "step [s] = 0.5 is outside the valid range [1, 86400]"],
+    [[2026, 6, 21, 0, 90000, 60, 48.21, 16.37, 190, 0.43], "end [s after 0:00 UTC] = 90000 is outside the valid range [0, 86399]"],
+    [[2026, 6, 21, 0, 86399, 60, 48.21, 200, 190, 0.43], /^longitude.*200.*-180, 180/],
+    [[2200, 6, 21, 0, 86399, 60, 48.21, 16.37, 190, 0.43], "year (fast sun position, Grena 2012) = 2200 is outside the valid range [2010, 2110]"],
+  ];
+  for (const [args, message] of cases) {
+    assert.throws(() => DaylightDay.at(...args), (e) => e instanceof Error &&
+      (typeof message === "string" ? e.message === message : message.test(e.message)), JSON.stringify(args));
+  }
 });

@@ -9,7 +9,7 @@
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
-import { mkdtemp, readFile, readdir, rm, symlink, writeFile } from "node:fs/promises";
+import { mkdtemp, readFile, readdir, rm, stat, symlink, writeFile } from "node:fs/promises";
 import { tmpdir } from "node:os";
 import path from "node:path";
 import { SWIFTSHADER, launch, serve } from "../browser/harness.mjs";
@@ -43,7 +43,14 @@ test("the package's manifest says what it is", async () => {
   assert.deepEqual(Object.keys(pkg.exports).sort(), [".", "./package.json", "./shaders", "./sky_wasm_bg.wasm", "./three"]);
   assert.ok(pkg.types && pkg.peerDependencies.three, "types and the three peer dependency");
   for (const f of pkg.files) {
-    await readFile(path.join(scratch, "node_modules/sky-wasm", f)); // every listed file is installed
+    // Every listed file is installed; a listed folder (the bindings' snippets/) holds files.
+    const installed = path.join(scratch, "node_modules/sky-wasm", f);
+    if ((await stat(installed)).isDirectory()) {
+      const inside = await readdir(installed, { recursive: true, withFileTypes: true });
+      assert.ok(inside.some((e) => e.isFile()), `${f} holds files`);
+    } else {
+      await readFile(installed);
+    }
   }
 });
 
