@@ -4,7 +4,7 @@
 // asymmetry 0.703, scale height 1200 m, ozone 300 DU, ground albedo 0.2, 1 AU; 10 nm bins 360-830 nm.
 
 /// The default atmosphere's aerosol optical depth at 550 nm (sky-train's `Atmosphere::default()`).
-pub(crate) const DEFAULT_AOD: f32 = 0.43;
+pub(crate) const DEFAULT_AOD: f32 = 0.38;
 
 /// The ozone column of every table, Dobson units.
 pub(crate) const OZONE_DU: f32 = 300.0;

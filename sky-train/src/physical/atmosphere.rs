@@ -53,7 +53,7 @@ pub const CLEAN_AOD_550: f64 = 0.151;
 /// global horizontal illuminance closest to USNO Circular 171's curve (least squares of
 /// ln(E / E_USNO) over sun elevations 0-90°, `sky-train fit-aod`, rounded to 0.01), every other
 /// constituent at [`Atmosphere`]'s published values.
-pub const RECORD_AOD_550: f64 = 0.43;
+pub const RECORD_AOD_550: f64 = 0.38;
 
 /// The named atmospheres of `--atmosphere`: the constituents of [`Atmosphere`]'s list, each
 /// preset with its aerosol optical depth.
