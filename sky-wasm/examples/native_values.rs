@@ -245,8 +245,8 @@ fn main() -> anyhow::Result<()> {
         sh(0.5, 1.0, 3.0, 5)?,
         sh(1.4, 4.0, 5.5, 7)?,
         sh(0.9, 2.0, 2.5, 1)?,
-        // The daylight sky: day, the day-dusk blend (88°), twilight (100°, the dusk-night
-        // blend at 97°), and a sun beyond 108° (the 108° sky).
+        // The daylight sky: day, the day-dusk blend (88°), the dusk-night blend (97°),
+        // twilight (100°), and a sun beyond 108° (which draws the 108° sky).
         daylight(0.6, 1.0, 0.43)?,
         daylight(1.536, 4.0, 0.2)?,
         daylight(1.693, 2.5, 0.8)?,
