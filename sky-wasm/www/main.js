@@ -159,11 +159,11 @@ function syncSunControls(p) {
     `${compassDeg.toFixed(2)}° (geometric, NREL SPA)`;
   const lowestDeg = 90 - maxSunZenithDeg(p.model);
   if (elevationDeg < lowestDeg) {
-    throw new Error(lowestDeg < 0
-      ? `the sun is ${(-elevationDeg).toFixed(2)}° below the horizon at this time and place: ` +
-        `the daylight sky ends at ${-lowestDeg}° below, with astronomical twilight (try a later time)`
-      : `the sun is ${(-elevationDeg).toFixed(2)}° below the horizon at this time and place: ` +
-        "the sky models need it above (the daylight sky goes to −18°; or try a later time)");
+    const why = lowestDeg < 0
+      ? `the daylight sky ends at ${-lowestDeg}° below, with astronomical twilight`
+      : "the sky models need it above (the daylight sky goes to −18°)";
+    throw new Error(`the sun is ${(-elevationDeg).toFixed(2)}° below the horizon at this time ` +
+      `and place: ${why} (try a later time)`);
   }
   // The angle sliders follow, so that switching back keeps this sun.
   $("sun-zenith").value = (p.sunZenith / DEG).toFixed(1);
