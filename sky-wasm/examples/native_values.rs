@@ -76,6 +76,19 @@ fn sh(z: f32, a: f32, t: f32, bands: u32) -> Result<Case, SkyError> {
     ))
 }
 
+fn daylight(z: f32, a: f32, aod: f32) -> Result<Case, SkyError> {
+    let sky = Daylight::new(Sun::new(z, a)?, aod)?.sky();
+    let spec = format!(r#"{{"kind":"daylight","args":[{z},{a},{aod}]}}"#);
+    Ok((
+        spec,
+        Box::new(move |d, o| {
+            for (o, d) in o.iter_mut().zip(d) {
+                *o = sky.rgb(*d);
+            }
+        }),
+    ))
+}
+
 fn floats(out: &mut String, values: impl IntoIterator<Item = f32>) {
     out.push('[');
     for (i, v) in values.into_iter().enumerate() {
@@ -232,6 +245,13 @@ fn main() -> anyhow::Result<()> {
         sh(0.5, 1.0, 3.0, 5)?,
         sh(1.4, 4.0, 5.5, 7)?,
         sh(0.9, 2.0, 2.5, 1)?,
+        // The daylight sky: day, the day-dusk blend (88°), the dusk-night blend (97°),
+        // twilight (100°), and a sun beyond 108° (which draws the 108° sky).
+        daylight(0.6, 1.0, 0.43)?,
+        daylight(1.536, 4.0, 0.2)?,
+        daylight(1.693, 2.5, 0.8)?,
+        daylight(1.745, 5.0, 0.05)?,
+        daylight(2.5, 0.5, 0.3)?,
     ];
     for preset in Preset::ALL {
         cases.push(aoas(preset, None)?);

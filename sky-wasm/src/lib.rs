@@ -21,7 +21,8 @@
 //! ```
 //!
 //! Units and axes are sky-core's: radians, +z up, azimuth from +x (east) towards +y (north);
-//! linear RGB in cd/m² for the Preetham and neural skies, O'Neil's relative units for AOAS.
+//! linear RGB in cd/m² for the Preetham, neural and daylight skies, O'Neil's relative units for
+//! AOAS.
 //! The values are sky-core's, bit for bit: the same code compiled for wasm32 (the wasm-bindgen
 //! tests in `tests/wasm.rs` check every model against the native build to 1e-6 relative).
 
@@ -31,6 +32,7 @@ pub mod projection;
 pub mod srgb8;
 
 use sky_core::aoas::{AoasSky, DayCycle, Preset, Scattering, Style};
+use sky_core::daylight::{Daylight, DaylightSky};
 use sky_core::neural::{NeuralWeights, pretrained};
 use sky_core::sh::ShSky;
 use sky_core::{NeuralSky, PreethamSky, Sun, Vec3, color, geom, solar};
@@ -61,6 +63,7 @@ enum Model {
     Neural(NeuralSky),
     Aoas(Box<AoasSky>),
     Sh(Box<ShSky>),
+    Daylight(Box<DaylightSky>),
 }
 
 // Not inlined: each call site would hold its own copy of every model's kernels (the .wasm
@@ -83,6 +86,11 @@ impl Model {
             Self::Sh(s) => {
                 for (o, d) in out.iter_mut().zip(dirs) {
                     *o = s.radiance(*d);
+                }
+            }
+            Self::Daylight(s) => {
+                for (o, d) in out.iter_mut().zip(dirs) {
+                    *o = s.rgb(*d);
                 }
             }
         }
@@ -248,12 +256,33 @@ impl Sky {
         })
     }
 
+    /// The sky of sky-core's clear-sky daylight (the physical atmosphere's radiance through
+    /// three neural networks, `DaylightSky`) for a sun at `sun_zenith` in [0, π] (below the
+    /// horizon too: twilight; beyond 108°, the sun 18° down, it draws the 108° sky) and
+    /// `sun_azimuth` (radians), under an atmosphere of aerosol optical depth `aod` at 550 nm
+    /// ([`daylight_min_aod`](daylight::daylight_min_aod) to
+    /// [`daylight_max_aod`](daylight::daylight_max_aod)). Its `rgb` is linear sRGB in cd/m²;
+    /// a channel may be negative in deep twilight (outside the sRGB gamut), which the 8-bit
+    /// images clamp to 0. Zero below the horizon.
+    ///
+    /// # Errors
+    /// sky-core's message for a parameter out of range.
+    pub fn daylight(sun_zenith: f32, sun_azimuth: f32, aod: f32) -> Result<Sky, JsError> {
+        let sun = Sun::new(sun_zenith, sun_azimuth).map_err(js_error)?;
+        let light = Daylight::new(sun, aod).map_err(js_error)?;
+        Ok(Self {
+            model: Model::Daylight(Box::new(light.sky())),
+            sun,
+        })
+    }
+
     /// The parameters of this sky's GPU shader (sky-gpu; the texts are the package's
     /// `shaders.js`, per [`model`](Self::model)): the uniform array `sky_<model>` as 4 floats
     /// per `vec4`. For an SH sky, the RGB coefficient c_lm is at `4 (l² + l + m)`.
     ///
     /// # Errors
-    /// An AOAS style with cloud noise, cloud shapes or ambiguity (the shader has none).
+    /// An AOAS style with cloud noise, cloud shapes or ambiguity (the shader has none), or a
+    /// daylight sky (no shader).
     #[wasm_bindgen(js_name = shaderParams)]
     pub fn shader_params(&self) -> Result<Vec<f32>, JsError> {
         use sky_gpu::models;
@@ -262,6 +291,11 @@ impl Sky {
             Model::Neural(s) => models::neural::params(s),
             Model::Aoas(s) => models::aoas::params(s).map_err(display_error)?.to_vec(),
             Model::Sh(s) => models::sh::params(s).to_vec(),
+            Model::Daylight(_) => {
+                return Err(JsError::new(
+                    "the daylight sky has no GPU shader (its networks run on the CPU only)",
+                ));
+            }
         })
     }
 
@@ -283,7 +317,7 @@ impl Sky {
         }
     }
 
-    /// The model's name: "preetham", "neural", "aoas" or "sh".
+    /// The model's name: "preetham", "neural", "aoas", "sh" or "daylight".
     #[wasm_bindgen(getter)]
     #[must_use]
     pub fn model(&self) -> String {
@@ -292,6 +326,7 @@ impl Sky {
             Model::Neural(_) => "neural",
             Model::Aoas(_) => "aoas",
             Model::Sh(_) => "sh",
+            Model::Daylight(_) => "daylight",
         }
         .into()
     }

@@ -2,7 +2,8 @@
 //! (`scripts/wasm.sh test`, profile wasm-release with simd128, as the shipped .wasm):
 //!
 //! * parity: every model (Preetham, the neural sky with both shipped weight sets and from a weight
-//!   file's bytes, every AOAS preset and one with its sun moved, SH) gives the values of the
+//!   file's bytes, every AOAS preset and one with its sun moved, SH, the daylight sky by day, in
+//!   its networks' blends, in twilight and past astronomical twilight) gives the values of the
 //!   native build of sky-core to 1e-6 relative, per direction through `Sky::rgb` and for a whole
 //!   fisheye image through `Renderer::render_linear`;
 //! * errors: sky-core's errors become `JsError`s (JavaScript `Error`s) carrying sky-core's
@@ -96,6 +97,7 @@ enum Spec {
     Aoas([String; 1]),
     AoasWithSun(String, f32, f32),
     Sh(f32, f32, f32, u32),
+    Daylight(f32, f32, f32),
 }
 
 fn native() -> Native {
@@ -139,6 +141,7 @@ fn build(spec: &Spec) -> Sky {
         Spec::Aoas([preset]) => Sky::aoas(preset),
         Spec::AoasWithSun(preset, z, a) => Sky::aoas_with_sun(preset, *z, *a),
         Spec::Sh(z, a, t, bands) => Sky::sh(*z, *a, *t, *bands),
+        Spec::Daylight(z, a, aod) => Sky::daylight(*z, *a, *aod),
     })
 }
 
@@ -231,6 +234,11 @@ fn sh_matches_native() {
 }
 
 #[wasm_bindgen_test]
+fn daylight_sky_matches_native() {
+    assert!(check_parity(|s| matches!(s, Spec::Daylight(..))) >= 4);
+}
+
+#[wasm_bindgen_test]
 fn sky_core_errors_carry_its_message() {
     let core = |e: SkyError| e.to_string();
     let sun = Sun::new(0.5, 0.0).expect("a valid sun");
@@ -265,6 +273,16 @@ fn sky_core_errors_carry_its_message() {
             Sky::sh(0.5, 0.0, 3.0, 8).map(drop),
             ShSky::new(sun, 3.0, 8).map(drop),
             "SH bands = 8 is outside the valid range [1, 7]",
+        ),
+        (
+            Sky::daylight(0.5, 0.0, 0.9).map(drop),
+            Daylight::new(sun, 0.9).map(drop),
+            "aerosol optical depth = 0.9 is outside the valid range [0.05, 0.8]",
+        ),
+        (
+            Sky::daylight(3.5, 0.0, 0.43).map(drop),
+            Sun::new(3.5, 0.0).map(drop),
+            "sun zenith [rad] = 3.5 is outside the valid range [0, 3.1415927]",
         ),
         (
             Sky::sh(2.0, 0.0, 3.0, 5).map(drop),
@@ -389,6 +407,28 @@ fn the_fisheye_is_opaque_sky_inside_the_disc_and_responds_to_exposure() {
     let diff = js_sys::Uint8ClampedArray::new_with_length(64 * 64 * 4);
     ok(r.render_difference_srgb(&sky, &sky, &diff, 1e6));
     assert!(diff.to_vec().chunks(4).all(|px| px[..3] == [0, 0, 0]));
+}
+
+#[wasm_bindgen_test]
+fn the_daylight_sky_in_twilight_is_dim_but_draws_under_its_own_exposure() {
+    let day = ok(Sky::daylight(40f32.to_radians(), 0.0, 0.43));
+    let mut r = ok(Renderer::fisheye(64, 64));
+    for depression in [6.0f32, 12.0] {
+        let dusk = ok(Sky::daylight((90.0 + depression).to_radians(), 0.0, 0.43));
+        let e = dusk.auto_exposure();
+        assert!(
+            e > 1e3 * day.auto_exposure(),
+            "{depression}° down: exposure {e} vs the day's {}",
+            day.auto_exposure()
+        );
+        let rgba = render_srgb(&mut r, &dusk, e);
+        let [cr, cg, cb, ca] = pixel(&rgba, 64, 32, 32);
+        assert_eq!(ca, 255);
+        assert!(
+            cb > cr && cb > 32,
+            "{depression}° down: zenith {cr},{cg},{cb}"
+        );
+    }
 }
 
 #[wasm_bindgen_test]

@@ -31,7 +31,12 @@ const SH_TURBIDITY = [2.5, 6];
 
 for (const name of aoasPresets()) $("preset").add(new Option(name, name));
 
-const TURBIDITY_RANGE = { "neural-hosek": [1, 10], aoas: null, sh: SH_TURBIDITY };
+const TURBIDITY_RANGE = { "neural-hosek": [1, 10], aoas: null, sh: SH_TURBIDITY, daylight: null };
+
+/** The largest sun zenith angle (degrees) the sliders reach: the horizon, and for the daylight
+ * sky the end of astronomical twilight (the sun 18° down), the last sun its networks know. */
+const MAX_SUN_ZENITH_DEG = { daylight: 108 };
+const maxSunZenithDeg = (model) => MAX_SUN_ZENITH_DEG[model] ?? 90;
 
 /** The sun from the date, time and place controls, by sky-core's SPA. */
 function sunFromTime() {
@@ -106,6 +111,12 @@ function drawDaylight() {
   }
 }
 
+/** The zenith slider's range follows the model, as soon as it is chosen (a lower maximum moves
+ * the thumb up to it). */
+function syncZenithRange() {
+  $("sun-zenith").max = String(maxSunZenithDeg($("model").value));
+}
+
 function readControls() {
   const p = {
     model: $("model").value,
@@ -114,6 +125,7 @@ function readControls() {
     sunZenith: Number($("sun-zenith").value) * DEG,
     sunAzimuth: Number($("sun-azimuth").value) * DEG,
     turbidity: Number($("turbidity").value),
+    aod: Number($("aod").value),
     preset: $("preset").value,
     ev: Number($("exposure").value),
   };
@@ -145,9 +157,13 @@ function syncSunControls(p) {
   readout.dataset.compassDeg = compassDeg.toFixed(6);
   readout.textContent = `sun ${elevationDeg.toFixed(2)}° high, compass azimuth ` +
     `${compassDeg.toFixed(2)}° (geometric, NREL SPA)`;
-  if (elevationDeg < 0) {
+  const lowestDeg = 90 - maxSunZenithDeg(p.model);
+  if (elevationDeg < lowestDeg) {
+    const why = lowestDeg < 0
+      ? `the daylight sky ends at ${-lowestDeg}° below, with astronomical twilight`
+      : "the sky models need it above (the daylight sky goes to −18°)";
     throw new Error(`the sun is ${(-elevationDeg).toFixed(2)}° below the horizon at this time ` +
-      "and place: the sky models need it above (try a later time)");
+      `and place: ${why} (try a later time)`);
   }
   // The angle sliders follow, so that switching back keeps this sun.
   $("sun-zenith").value = (p.sunZenith / DEG).toFixed(1);
@@ -161,6 +177,7 @@ function makeSky(model, p) {
     case "neural-hosek": return Sky.neural("hosek", p.sunZenith, p.sunAzimuth, p.turbidity);
     case "aoas": return Sky.aoasWithSun(p.preset, p.sunZenith, p.sunAzimuth);
     case "sh": return Sky.sh(p.sunZenith, p.sunAzimuth, p.turbidity, SH_BANDS);
+    case "daylight": return Sky.daylight(p.sunZenith, p.sunAzimuth, p.aod);
     default: throw new Error(`unknown model ${model}`);
   }
 }
@@ -221,8 +238,14 @@ function syncControls(p) {
   $("exposure-value").value = $("exposure").value;
 }
 
-/** The sphere, lit by the SH sky of the same sun (the tables' turbidity range, 2.5-6). */
+/** The sphere, lit by the SH sky of the same sun (the tables' turbidity range, 2.5-6); none
+ * for a sun below the horizon (the daylight sky's twilight), where the SH tables end. */
 function drawSphere(p) {
+  if (p.sunZenith > Math.PI / 2) {
+    sphere.ctx.clearRect(0, 0, sphere.canvas.width, sphere.canvas.height);
+    $("sphere-caption").textContent = "no sphere: the SH lighting needs the sun above the horizon";
+    return;
+  }
   const [lo, hi] = SH_TURBIDITY;
   const turbidity = Math.min(hi, Math.max(lo, p.turbidity));
   const sh = Sky.sh(p.sunZenith, p.sunAzimuth, turbidity, SH_BANDS);
@@ -313,8 +336,10 @@ for (const id of ["model", "view", "sun-zenith", "sun-azimuth", "turbidity", "ex
   "sun-from", "latitude", "longitude", "date", "time", "aod"]) {
   $(id).addEventListener("input", requestDraw);
 }
+$("model").addEventListener("input", syncZenithRange);
 $("measure").addEventListener("click", measure);
 /** What the browser tests read: the plotted day and its geometry. */
 window.skyDemo = { daylight: null };
 document.body.dataset.ready = "true";
+syncZenithRange();
 draw();

@@ -78,7 +78,7 @@ function meanRgb(pixels, zenithDeg, azimuths) {
 }
 
 const chroma = ([r, g, b]) => ({ blue: b / (r + g + b), red: r / (r + g + b) });
-const MODELS = ["preetham", "neural-preetham", "neural-hosek", "aoas", "sh"];
+const MODELS = ["preetham", "neural-preetham", "neural-hosek", "aoas", "sh", "daylight"];
 
 test("the page loads without a console error and draws a sky", async () => {
   assert.deepEqual(problems, []);
@@ -121,6 +121,7 @@ test("each control changes the image", async () => {
     { turbidity: 5 }, { "sun-zenith": 60 }, { "sun-azimuth": 200 }, { exposure: 1.5 },
     { model: "neural-hosek" }, { view: "difference" }, { view: "split" },
     { model: "aoas", view: "single" }, { preset: "coral" }, { model: "sh" },
+    { model: "daylight" }, { aod: 0.1 }, { "sun-zenith": 100 }, { aod: 0.43 },
     { model: "preetham", "sun-from": "time" }, { time: 50_000 },
     { date: "2026-12-21", time: 43_200 }, { place: "-33.92,18.42,10" },
   ];
@@ -132,6 +133,32 @@ test("each control changes the image", async () => {
     before = now;
   }
   await set({ "sun-from": "angles" });
+});
+
+test("daylight: a twilight sun still draws a lit, blue-zenith sky; other models stop at the horizon", async () => {
+  for (const zenith of [96, 102, 108]) {
+    await set({ model: "daylight", view: "single", "sun-zenith": zenith, "sun-azimuth": 90, aod: 0.43, exposure: 0 });
+    assert.equal(Number(await page.inputValue("#sun-zenith")), zenith, "the slider reaches 108° for daylight");
+    const px = await domePixels();
+    const zenithRgb = meanRgb(px, 0, [0]);
+    const overall = meanRgb(px, 60, [0, 60, 120, 180, 240, 300]);
+    console.log(`  daylight, sun ${90 - zenith}°: zenith rgb ${zenithRgb}, 60° from it ${overall.map(Math.round)}`);
+    assert.ok(Math.max(...overall) > 40, `sun ${90 - zenith}°: a lit sky, not black (${overall})`);
+    assert.ok(zenithRgb[2] > zenithRgb[0], `sun ${90 - zenith}°: a blue zenith (${zenithRgb})`);
+    assert.match(await page.textContent("#sphere-caption"), /above the horizon/);
+  }
+  // By date and time: Vienna, 21 June 2026, 20:00 UTC, the sun a few degrees down.
+  await set({ place: "48.21,16.37,190", date: "2026-06-21", time: 20 * 3600, "sun-from": "time" });
+  const elevation = Number(await page.getAttribute("#sun-readout", "data-elevation-deg"));
+  assert.ok(elevation < -3 && elevation > -18, `sun ${elevation}°`);
+  const px = await domePixels();
+  assert.ok(Math.max(...meanRgb(px, 60, [0, 90, 180, 270])) > 40, "the twilight dome by date and time is lit");
+  await set({ "sun-from": "angles", "sun-zenith": 100, time: 39_600 });
+  // Another model brings the slider back to the horizon.
+  await set({ model: "preetham" });
+  assert.equal(Number(await page.inputValue("#sun-zenith")), 90);
+  await set({ "sun-zenith": 40 });
+  assert.deepEqual(problems, []);
 });
 
 test("date, time and place put the sun where pvlib's SPA does (within 0.01°)", async () => {
@@ -264,21 +291,22 @@ test("the sphere is drawn, brighter on the sun's side", async () => {
 });
 
 test("screenshot kept as an artifact", async () => {
-  // A summer evening in Vienna, the sun about 10° high in the north-west.
-  await set({ model: "preetham", view: "single", turbidity: 3, exposure: 0, place: "48.21,16.37,190",
-    date: "2026-06-21", time: 17 * 3600 + 15 * 60, "sun-from": "time" });
+  // The end of civil twilight on a summer evening in Vienna, the sun 6.5° below the horizon in the
+  // north-west, in the daylight sky (no sphere: its SH lighting needs the sun up).
+  await set({ model: "daylight", view: "single", aod: 0.43, exposure: 0, place: "48.21,16.37,190",
+    date: "2026-06-21", time: 19 * 3600 + 45 * 60, "sun-from": "time" });
   await mkdir(artifacts, { recursive: true });
   const file = path.join(artifacts, "demo.png");
   await page.screenshot({ path: file, fullPage: true });
   console.log(`  screenshot: ${file}`);
-  await set({ "sun-from": "angles" });
+  await set({ "sun-from": "angles", time: 39_600 });
   assert.deepEqual(problems, []);
 });
 
 test("frame times, as the demo's own readout measures them (printed, not asserted)", async () => {
   // Speed is measured, not asserted (a shared machine's timings vary); the goals are 8 ms for
   // the neural sky and 16 ms for Preetham per 512 × 512 fisheye frame.
-  const goals = { "neural-preetham": 8, preetham: 16, aoas: null };
+  const goals = { "neural-preetham": 8, preetham: 16, aoas: null, daylight: null };
   const medians = {};
   for (const model of Object.keys(goals)) {
     await set({ model, view: "single", preset: "physical", "sun-zenith": 40, "sun-azimuth": 90, turbidity: 3 });

@@ -25,7 +25,7 @@ const { Sky, Renderer, DaylightDay, aoasPresets, daylightMinAod, daylightMaxAod,
 const nativeFile = process.env.SKY_NATIVE_VALUES ?? path.join(root, "target/wasm/native_values.json");
 
 test("the API is exported under its JavaScript names", () => {
-  for (const name of ["preetham", "neural", "neuralFromBytes", "aoas", "aoasWithSun", "sh", "shUnfiltered"]) {
+  for (const name of ["preetham", "neural", "neuralFromBytes", "aoas", "aoasWithSun", "sh", "shUnfiltered", "daylight"]) {
     assert.equal(typeof Sky[name], "function", `Sky.${name}`);
   }
   for (const name of ["rgb", "rgbBatch", "shaderParams", "irradiance", "autoExposure", "free"]) {
@@ -65,6 +65,11 @@ test("getters, and rgb as a Float32Array", () => {
 test("errors are thrown as JavaScript Errors carrying the message", () => {
   assert.throws(() => Sky.preetham(0.5, 0, 9), (e) => e instanceof Error &&
     e.message === "turbidity = 9 is outside the valid range [2, 6]");
+  assert.throws(() => Sky.daylight(1.7, 0, 0.9), (e) => e instanceof Error &&
+    e.message === "aerosol optical depth = 0.9 is outside the valid range [0.05, 0.8]");
+  assert.throws(() => Sky.daylight(3.5, 0, 0.43), (e) => e instanceof Error &&
+    e.message === "sun zenith [rad] = 3.5 is outside the valid range [0, 3.1415927]");
+  assert.throws(() => Sky.daylight(1.7, 0, 0.43).shaderParams(), /no GPU shader/);
   const r = Renderer.fisheye(8, 4);
   assert.throws(() => r.renderLinear(Sky.preetham(0.5, 0, 3), new Float32Array(5)), (e) =>
     e instanceof Error && e.message === "out has length 5, but a 8x4 image needs 96 (3 per pixel)");
@@ -95,6 +100,7 @@ test("renderers write into the caller's typed arrays", () => {
 test("the shipped module (after wasm-opt) gives native sky-core's values to 1e-6", () => {
   const native = JSON.parse(readFileSync(nativeFile, "utf8"));
   assert.ok(native.skies.length >= 10, `${native.skies.length} skies`);
+  assert.ok(native.skies.filter((s) => s.sky.kind === "daylight").length >= 4, "daylight skies");
   for (const { sky: { kind, args }, rgb } of native.skies) {
     const call = kind === "neuralFromBytes"
       ? [readFileSync(path.join(root, args[0])), ...args.slice(1)] : args;
