@@ -222,3 +222,72 @@ fn schedule_refuses_a_zero_step() {
         "{text}"
     );
 }
+
+/// The controller's daylight (sky-core's tables, as `schedule` prints them) against the
+/// measured clear-sky record, USNO Circular 171 (Janiczek & DeYoung 1987, after Brown 1952; its
+/// transcription is checked in `tests/tests/physical.rs`): global horizontal illuminance of
+/// Vienna's longest day, every 5 minutes, at the geometric sun elevation, within issue 15's
+/// bounds: 10 % at 10-90°, 15 % at 0-10°, a factor 1.5 from −6° to 0°, 2.5 from −12° to −6°;
+/// and the CCT of the global light at least 9,000 K at sunset and 12,000 K at −4° (the rows
+/// nearest those elevations).
+#[test]
+fn schedule_against_the_clear_sky_record() {
+    use sky_train::physical::record::usno_illuminance;
+    let csv = run(
+        &[
+            "schedule",
+            "--lat",
+            "48.21",
+            "--lon",
+            "16.37",
+            "--date",
+            "2026-06-21",
+            "--step",
+            "5",
+        ],
+        "",
+    )
+    .expect("schedule runs");
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().expect("header").split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).expect(name);
+    let (h_col, g_col, cct_col) = (col("sun_elevation_deg"), col("global_lux"), col("cct_k"));
+    // (lowest, highest elevation, bound as a factor either way, worst factor seen, at).
+    let mut bands = [
+        (-12.0, -6.0, 2.5, 1.0f64, f64::NAN),
+        (-6.0, 0.0, 1.5, 1.0, f64::NAN),
+        (0.0, 10.0, 1.15, 1.0, f64::NAN),
+        (10.0, 90.0, 1.10, 1.0, f64::NAN),
+    ];
+    let mut near = [
+        (0.0f64, f64::INFINITY, f64::NAN),
+        (-4.0, f64::INFINITY, f64::NAN),
+    ];
+    for line in lines {
+        let f: Vec<&str> = line.split(',').collect();
+        let h: f64 = f[h_col].parse().expect("elevation");
+        let g: f64 = f[g_col].parse().expect("global");
+        let factor = (g / usno_illuminance(h)).max(usno_illuminance(h) / g);
+        for b in &mut bands {
+            if h >= b.0 && h < b.1 && factor > b.3 {
+                (b.3, b.4) = (factor, h);
+            }
+        }
+        for n in &mut near {
+            if (h - n.0).abs() < n.1 {
+                n.1 = (h - n.0).abs();
+                n.2 = f[cct_col].parse().unwrap_or(f64::INFINITY); // empty: off the locus
+            }
+        }
+    }
+    for (lo, hi, bound, worst, at) in bands {
+        println!("{lo}..{hi} deg: worst factor {worst:.3} at {at:.2} deg (bound {bound})");
+        assert!(worst <= bound, "{lo}..{hi} deg: factor {worst} at {at} deg");
+    }
+    println!(
+        "CCT near 0 deg {:.0} K, near -4 deg {:.0} K",
+        near[0].2, near[1].2
+    );
+    assert!(near[0].1 < 0.5 && near[0].2 >= 9_000.0, "{near:?}");
+    assert!(near[1].1 < 0.5 && near[1].2 >= 12_000.0, "{near:?}");
+}
