@@ -406,14 +406,18 @@ fn file_name(path: &Path) -> String {
 /// The doc lines of a shipped network's constant: what it was trained on, and from which file.
 fn provenance<const H: usize>(weights: &NeuralWeights<H>, file: &str) -> Vec<String> {
     let (t0, t1) = weights.turbidity_range;
+    let (z0, z1) = weights.sun_zenith_range;
     vec![
         format!(
             "A 6-{H}-3 neural sky trained on the {} sky, turbidity {t0} to {t1}, sun zenith",
             weights.source_name()
         ),
         format!(
-            "0 to 90 degrees (seed {}; validation NRMSE {:.5}), from `sky-core/weights/{file}`.",
-            weights.seed, weights.nrmse
+            "{:.0} to {:.0} degrees (seed {}; validation NRMSE {:.5}), from `sky-core/weights/{file}`.",
+            z0.to_degrees(),
+            z1.to_degrees(),
+            weights.seed,
+            weights.nrmse
         ),
     ]
 }

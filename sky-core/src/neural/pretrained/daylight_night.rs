@@ -3,7 +3,7 @@
 use crate::neural::NeuralWeights;
 
 /// A 6-24-3 neural sky trained on the physical night, XYZ / diffuse sky, turbidity 0.05 to 0.8, sun zenith
-/// 0 to 90 degrees (seed 1; validation NRMSE 0.01640), from `sky-core/weights/daylight_night.skyn`.
+/// 94 to 108 degrees (seed 1; validation NRMSE 0.01640), from `sky-core/weights/daylight_night.skyn`.
 #[rustfmt::skip]
 #[allow(clippy::approx_constant, clippy::excessive_precision)] // trained values, as printed
 pub const DAYLIGHT_NIGHT: NeuralWeights<24> = NeuralWeights {
