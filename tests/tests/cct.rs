@@ -138,8 +138,10 @@ proptest! {
     }
 
     /// Anywhere in the chromaticity square: the same, and within 0.1 of the locus (where its
-    /// normals do not cross) the exact minimisation's CCT (within 0.15 K below 10,000 K, 0.01 %
-    /// above) and Duv (1e-7); an error only where the exact minimisation finds no CCT there.
+    /// normals do not cross) the exact minimisation's CCT and Duv (1e-7): within 0.15 K below
+    /// 10,000 K and 0.01 % above for |Duv| ≤ 0.05, and issue 16's 2 K and 0.1 % from 0.05 to 0.1
+    /// (a scan of 2.25 million chromaticities found 0.106 K and 0.0069 % within 0.05, 1.09 K and
+    /// 0.018 % beyond); an error only where the exact minimisation finds no CCT there.
     #[test]
     fn any_chromaticity_near_the_locus_agrees_with_the_exact_minimisation(
         x in 0.0f32..=1.0,
@@ -153,7 +155,12 @@ proptest! {
         let near = |duv: f64| duv.abs() <= 0.1;
         match (got, exact) {
             (Ok(c), Some((t, duv))) if near(duv) || near(c.duv.into()) => {
-                let bound = if t < 10_000.0 { 0.15 } else { 1e-4 * t };
+                let bound = match (t < 10_000.0, duv.abs() <= 0.05) {
+                    (true, true) => 0.15,
+                    (false, true) => 1e-4 * t,
+                    (true, false) => 2.0,
+                    (false, false) => 1e-3 * t,
+                };
                 prop_assert!((f64::from(c.kelvin) - t).abs() <= bound, "{x}, {y}: {c:?} vs {t}");
                 prop_assert!((f64::from(c.duv) - duv).abs() <= 1e-7, "{x}, {y}: {c:?} vs {duv}");
             }
