@@ -276,7 +276,7 @@ fn schedule_against_the_clear_sky_record() {
         for n in &mut near {
             if (h - n.0).abs() < n.1 {
                 n.1 = (h - n.0).abs();
-                n.2 = f[cct_col].parse().unwrap_or(f64::INFINITY); // empty: off the locus
+                n.2 = f[cct_col].parse().unwrap_or(f64::NAN); // empty: off the locus, fails below
             }
         }
     }
