@@ -6,11 +6,37 @@
 #    wasm-bindgen-cli at the exact version of the wasm-bindgen crate in Cargo.lock (in
 #    .tools/wasm-bindgen: wasm-bindgen, and wasm-bindgen-test-runner for the wasm-bindgen tests),
 #    and the npm packages of sky-wasm/package-lock.json (`npm ci`).
+# The cargo-installed tools (wasm-bindgen-cli, cargo-fuzz) are built once per machine, into a
+# folder per version under $SKY_TOOLS_CACHE (default ${XDG_CACHE_HOME:-~/.cache}/sky-tools),
+# and linked from .tools: a fresh clone on a machine that has them installs nothing, and two
+# checkouts that pin different versions do not replace each other's.
 # Safe to run again: every step checks first.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 tools="$root/.tools"
-mkdir -p "$tools"
+tools_cache=${SKY_TOOLS_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/sky-tools}
+mkdir -p "$tools" "$tools_cache"
+
+# cached_install NAME VERSION CRATE [CARGO_ARGS...]: `cargo install CRATE --version =VERSION`
+# into $tools_cache/NAME-VERSION unless it is there (a finished install leaves .complete), then
+# .tools/NAME links to it.
+cached_install() {
+  local name=$1 version=$2 crate=$3
+  shift 3
+  local dir="$tools_cache/$name-$version"
+  if [ ! -f "$dir/.complete" ]; then
+    echo "setup: cargo install $crate $version into $dir (a few minutes, once per machine)"
+    rm -rf "$dir.tmp"
+    cargo install -q "$crate" --version "=$version" --root "$dir.tmp" "$@"
+    touch "$dir.tmp/.complete"
+    rm -rf "$dir"
+    mv "$dir.tmp" "$dir"
+  fi
+  if [ "$(readlink "$tools/$name" 2>/dev/null)" != "$dir" ]; then
+    rm -rf "$tools/$name"
+    ln -s "$dir" "$tools/$name"
+  fi
+}
 
 # version_at_least HAVE NEED: true when dotted version HAVE >= NEED.
 version_at_least() { [ "$(printf '%s\n%s\n' "$2" "$1" | sort -V | head -n 1)" = "$2" ]; }
@@ -75,20 +101,21 @@ fi
 bindgen_version=$(awk '/^name = "wasm-bindgen"$/ { getline; gsub(/"/, "", $3); print $3 }' "$root/Cargo.lock")
 bindgen="$tools/wasm-bindgen/bin/wasm-bindgen"
 test_runner="$tools/wasm-bindgen/bin/wasm-bindgen-test-runner"
+# Not --locked: the CLI's own lock file pins a webpki-roots release the registry here lacks.
+cached_install wasm-bindgen "$bindgen_version" wasm-bindgen-cli
 if [ "$("$bindgen" --version 2>/dev/null)" != "wasm-bindgen $bindgen_version" ] ||
   [ "$("$test_runner" --version 2>/dev/null)" != "wasm-bindgen-test-runner $bindgen_version" ]; then
-  echo "setup: cargo install wasm-bindgen-cli $bindgen_version into .tools/wasm-bindgen (a few minutes)"
-  # Not --locked: the CLI's own lock file pins a webpki-roots release the registry here lacks.
-  cargo install -q wasm-bindgen-cli --version "=$bindgen_version" --root "$tools/wasm-bindgen" --force
+  echo "setup: $tools/wasm-bindgen does not run as wasm-bindgen $bindgen_version; remove $tools_cache/wasm-bindgen-$bindgen_version and rerun" >&2
+  exit 1
 fi
 
-# cargo-fuzz (libFuzzer's driver) for scripts/fuzz.sh, into .tools/cargo-fuzz; replaced when
-# another version is there.
+# cargo-fuzz (libFuzzer's driver) for scripts/fuzz.sh, linked as .tools/cargo-fuzz.
 fuzz_version=0.13.2
 cargo_fuzz="$tools/cargo-fuzz/bin/cargo-fuzz"
+cached_install cargo-fuzz "$fuzz_version" cargo-fuzz
 if [ "$("$cargo_fuzz" --version 2>/dev/null)" != "cargo-fuzz $fuzz_version" ]; then
-  echo "setup: cargo install cargo-fuzz $fuzz_version into .tools/cargo-fuzz (a few minutes)"
-  cargo install -q cargo-fuzz --version "=$fuzz_version" --root "$tools/cargo-fuzz" --force
+  echo "setup: $cargo_fuzz does not run as cargo-fuzz $fuzz_version; remove $tools_cache/cargo-fuzz-$fuzz_version and rerun" >&2
+  exit 1
 fi
 
 # playwright-core drives Debian's chromium; it must never download a browser of its own.

@@ -1,62 +1,161 @@
 #!/usr/bin/env bash
 # The one test command (README, CI): installs what the project needs, then runs every check.
+#
+#   scripts/test.sh         every check (CI runs this)
+#   scripts/test.sh quick   the edit loop: fmt, clippy and the workspace's tests (unit,
+#                           integration, doctests) only
+#
+# Every check:
 #   host:  fmt, clippy (-D warnings), rustdoc (-D warnings), all workspace tests and doctests
 #          (among them sky-train/tests/module_graph.rs: sky-train's modules import without cycles),
 #          the micromath accuracy test with sky-core's `micromath` feature on,
 #          sky-core's examples, `cargo publish --dry-run` of the publishable crates,
-#          coverage-guided fuzzing of the decoders of outside input (scripts/fuzz.sh: six
-#          libFuzzer targets, 25 s each), the sh blocks of README.md and docs/
+#          coverage-guided fuzzing of the decoders of outside input (scripts/fuzz.sh: one
+#          libFuzzer run per target, 25 s each), the sh blocks of README.md and docs/
 #          (scripts/doc-blocks.sh; their Rust blocks are doctests of tests/src/lib.rs)
 #   cross: sky-core for thumbv7em / riscv32imac / wasm32 without std or alloc, and the firmware
-#          examples under qemu (Cortex-M4F; fixed point on Cortex-M3 and M0) checked against
-#          host-computed values
+#          examples under qemu checked against host-computed values (scripts/cross.sh)
 #   wasm:  sky-wasm built for wasm32, its wasm-bindgen tests in node (parity with native sky-core,
 #          errors, images), node tests of its JavaScript surface, the demos' browser tests and
 #          every GPU shader against sky-core (WebGL2 and WebGPU on SwiftShader) in Debian's
 #          chromium, and the npm tarball installed into a scratch project (scripts/wasm.sh test)
+#
+# Two lanes run side by side on the machine's cores: the host lane (clippy, doc, the workspace
+# tests, micromath, publish) in target/debug, and the other lane (cross, wasm, fuzz, doc blocks)
+# in target/cross, target/wasm, fuzz/target and target/release. They share no build directory,
+# so neither waits for the other's cargo lock, and each fills the other's single-threaded
+# stretches (link-time optimisation, qemu, fuzzing, the browser). The other lane's output is
+# printed when it ends; the first failure in either lane stops both. Each step's time is
+# printed at the end (docs/testing.md has a run's figures).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
+mode=${1:-all}
+case "$mode" in
+  all | quick) ;;
+  *)
+    echo "usage: scripts/test.sh [quick]" >&2
+    exit 2
+    ;;
+esac
 start=$(date +%s)
-step() { printf '\n==> %s (at %d s)\n' "$*" "$(( $(date +%s) - start ))"; }
+times=$(mktemp)
+lane_log=$(mktemp)
+lane_done=$(mktemp)
+lane_pid=
+# On a failure in the host lane (set -e ends the script there), the other lane is stopped and
+# its output so far printed.
+cleanup() {
+  local status=$?
+  if [ -n "$lane_pid" ]; then
+    kill -- "-$lane_pid" 2>/dev/null || true
+    wait "$lane_pid" 2>/dev/null || true
+    printf '\nFAIL: the host lane (above), exit status %d; the other lane was stopped. Its output so far:\n' \
+      "$status" >&2
+    cat "$lane_log"
+  fi
+  rm -f "$times" "$lane_log" "$lane_done"
+}
+trap cleanup EXIT
 
-step "setup"
-scripts/setup.sh
+# step LANE NAME COMMAND...: runs COMMAND under a heading, records its wall time.
+step() {
+  local lane=$1 name=$2 began
+  shift 2
+  # A failure in the other lane stops the host lane at its next step.
+  if [ "$lane" = host ] && [ -s "$lane_done" ] && [ "$(cat "$lane_done")" != 0 ]; then
+    echo "the other lane failed (its output follows)" >&2
+    exit 1
+  fi
+  began=$(date +%s)
+  printf '\n==> %s (at %d s)\n' "$name" "$((began - start))"
+  "$@"
+  printf '%-5s %5d s  %s\n' "$lane" "$(($(date +%s) - began))" "$name" >>"$times"
+}
 
-step "cargo fmt --check (the workspace, and the firmware outside it)"
-cargo fmt --all -- --check
-(cd firmware && cargo fmt -- --check)
+summary() {
+  printf '\nstep times (wall, both lanes side by side):\n'
+  cat "$times"
+}
 
-step "cargo clippy --all-targets -D warnings"
-cargo clippy --workspace --all-targets --locked -- -D warnings
+# The publish dry run builds each crate from its packaged sources, which are no workspace: with
+# the workspace's dev profile given again here, the dependencies the tests built are reused
+# instead of built once more unoptimised.
+dev_profile=(--config 'profile.dev.debug="line-tables-only"'
+  --config 'profile.dev.package."*".opt-level=2'
+  --config 'profile.dev.package.sky-core.opt-level=2'
+  --config 'profile.dev.package.sky-train.opt-level=2')
 
-step "cargo doc (warnings are errors)"
-RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked --quiet
+examples() {
+  for example in preetham controller; do
+    cargo run --locked -q -p sky-core --example "$example" >/dev/null
+  done
+}
 
-step "cargo test (workspace: unit, integration, doc tests)"
-cargo test --workspace --locked
+fmt() {
+  cargo fmt --all -- --check
+  (cd firmware && cargo fmt -- --check)
+}
 
-step "sky-core's micromath feature: each model's error against its f64 reference"
-cargo test --locked -p sky-tests --features micromath --test micromath
+# The lane beside the host's: each of its steps has its own build directory.
+other_lane() {
+  step other "cross targets and firmware under qemu" scripts/cross.sh
+  step other "sky-wasm: wasm build, wasm-bindgen tests and node tests, browser tests of the demo" \
+    scripts/wasm.sh test
+  step other "coverage-guided fuzzing (libFuzzer): every decoder of outside input, 25 s each" \
+    scripts/fuzz.sh 25
+  step other "the sh and toml blocks of README.md and docs/ run as written" scripts/doc-blocks.sh
+}
 
-step "sky-core's examples run"
-for example in preetham controller; do
-  cargo run --locked -q -p sky-core --example "$example" >/dev/null
-done
+step host "setup" scripts/setup.sh
+step host "cargo fmt --check (the workspace, and the firmware outside it)" fmt
 
-step "cargo publish --dry-run: sky-core, sky-gpu and sky-train package and build from their packaged sources"
-cargo publish --workspace --dry-run --locked --allow-dirty
+if [ "$mode" = quick ]; then
+  step host "cargo clippy --all-targets -D warnings" \
+    cargo clippy --workspace --all-targets --locked -- -D warnings
+  step host "cargo test (workspace: unit, integration, doc tests)" cargo test --workspace --locked
+  summary
+  printf '\nquick checks passed in %d s (the whole suite: scripts/test.sh)\n' "$(($(date +%s) - start))"
+  exit 0
+fi
 
-step "coverage-guided fuzzing (libFuzzer): every decoder of outside input, 25 s each"
-scripts/fuzz.sh 25
+# Job control gives the other lane a process group of its own, which a failure here ends.
+set -m
+{
+  # (Not `( … ) || status=$?`: inside a `||`, bash ignores set -e.)
+  set +e
+  (
+    set -euo pipefail
+    other_lane
+  )
+  status=$?
+  echo "$status" >"$lane_done"
+  exit "$status"
+} >"$lane_log" 2>&1 &
+lane_pid=$!
+set +m
 
-step "the sh and toml blocks of README.md and docs/ run as written"
-scripts/doc-blocks.sh
+step host "cargo clippy --all-targets -D warnings" \
+  cargo clippy --workspace --all-targets --locked -- -D warnings
+RUSTDOCFLAGS="-D warnings" step host "cargo doc (warnings are errors)" \
+  cargo doc --workspace --no-deps --locked --quiet
+step host "cargo test (workspace: unit, integration, doc tests)" cargo test --workspace --locked
+step host "sky-core's micromath feature: each model's error against its f64 reference" \
+  cargo test --locked -p sky-tests --features micromath --test micromath
+step host "sky-core's examples run" examples
+step host "cargo publish --dry-run: sky-core, sky-gpu and sky-train package and build from their packaged sources" \
+  cargo publish --workspace --dry-run --locked --allow-dirty "${dev_profile[@]}"
 
-step "cross targets and firmware under qemu"
-scripts/cross.sh
-
-step "sky-wasm: wasm build, wasm-bindgen tests and node tests, browser tests of the demo"
-scripts/wasm.sh test
-
-printf '\nall checks passed in %d s\n' "$(( $(date +%s) - start ))"
+printf '\n==> the host lane passed at %d s; waiting for the other lane (cross, wasm, fuzz, doc blocks)\n' \
+  "$(($(date +%s) - start))"
+lane_status=0
+wait "$lane_pid" || lane_status=$?
+lane_pid=
+printf '\n==> the other lane: cross, wasm, fuzz, doc blocks (its output, in order)\n'
+cat "$lane_log"
+if [ "$lane_status" -ne 0 ]; then
+  printf '\nFAIL: the other lane (above), exit status %d\n' "$lane_status" >&2
+  exit "$lane_status"
+fi
+summary
+printf '\nall checks passed in %d s\n' "$(($(date +%s) - start))"

@@ -55,33 +55,47 @@ impl Evaluation {
     /// Seed 000's Tables 1 and 2 beside ours.
     #[must_use]
     pub fn report(&self) -> String {
-        let mut s = String::new();
-        let paper = PaperFigures::of(self.model);
-        let _ = writeln!(
-            s,
-            "{}: {} test images ({} directions each, upper hemisphere 128x32, sun azimuth {TEST_SUN_AZIMUTH} rad)",
-            self.model,
-            self.images.len(),
-            128 * 32
-        );
-        let _ = writeln!(s, "{:<44} {:>10} {:>10}", "", "paper", "ours");
-        let p = |f: Option<f64>| f.map_or_else(|| "-".into(), |v| format!("{v:.5}"));
-        let _ = writeln!(
-            s,
-            "{:<44} {:>10} {:>10.5}",
-            "Table 1: mean NRMSE",
-            p(paper.map(|f| f.nrmse)),
-            self.mean_nrmse()
-        );
-        let _ = writeln!(
-            s,
-            "{:<44} {:>10} {:>10.5}",
-            "Table 2: mean |irradiance difference| / ref",
-            p(paper.map(|f| f.irradiance_relative())),
-            self.mean_irradiance_relative()
-        );
-        s
+        report(self.model, &[("ours", self)])
     }
+}
+
+/// Seed 000's Tables 1 and 2 for `model` beside one column per labelled evaluation (labels of at
+/// most 10 characters keep the columns aligned).
+#[must_use]
+pub fn report(model: ModelKind, columns: &[(&str, &Evaluation)]) -> String {
+    let mut s = String::new();
+    let paper = PaperFigures::of(model);
+    let images = columns.first().map_or(0, |(_, e)| e.images.len());
+    let _ = writeln!(
+        s,
+        "{model}: {images} test images ({} directions each, upper hemisphere 128x32, sun azimuth {TEST_SUN_AZIMUTH} rad)",
+        128 * 32
+    );
+    let p = |f: Option<f64>| f.map_or_else(|| "-".into(), |v| format!("{v:.5}"));
+    let _ = write!(s, "{:<44} {:>10}", "", "paper");
+    for (label, _) in columns {
+        let _ = write!(s, " {label:>10}");
+    }
+    let rows: [(&str, Option<f64>, fn(&Evaluation) -> f64); 2] = [
+        (
+            "Table 1: mean NRMSE",
+            paper.map(|f| f.nrmse),
+            Evaluation::mean_nrmse,
+        ),
+        (
+            "Table 2: mean |irradiance difference| / ref",
+            paper.map(|f| f.irradiance_relative()),
+            Evaluation::mean_irradiance_relative,
+        ),
+    ];
+    for (name, figure, of) in rows {
+        let _ = write!(s, "\n{name:<44} {:>10}", p(figure));
+        for (_, evaluation) in columns {
+            let _ = write!(s, " {:>10.5}", of(evaluation));
+        }
+    }
+    s.push('\n');
+    s
 }
 
 fn mean(values: impl Iterator<Item = f64>) -> f64 {

@@ -79,4 +79,32 @@ fn showcase_writes_the_gallery_weights_and_figure() {
     }
     sky_train::export::read_weights::<12>(&dir.path().join("neural-preetham.skyn"))
         .expect("a valid weight file");
+
+    // A one-second run cannot beat the paper; the shipped weights' column beside it, labelled,
+    // must. The paper's figures are seed 000's Tables 1-2 (0.0145 NRMSE, 0.257 % irradiance).
+    let header = out
+        .lines()
+        .find(|l| l.contains("paper") && l.contains("this run"))
+        .unwrap_or_else(|| panic!("no table header: {out}"));
+    let columns: Vec<&str> = header.split_whitespace().collect();
+    assert_eq!(columns, ["paper", "this", "run", "shipped"], "{header}");
+    for (table, paper) in [("Table 1:", 0.0145), ("Table 2:", 0.00257)] {
+        let row = out
+            .lines()
+            .find(|l| l.starts_with(table))
+            .unwrap_or_else(|| panic!("no {table} row: {out}"));
+        let figures: Vec<f64> = row
+            .split_whitespace()
+            .rev()
+            .take(3)
+            .map(|v| v.parse().expect("a figure"))
+            .collect();
+        let (shipped, paper_column) = (figures[0], figures[2]);
+        assert!((paper_column - paper).abs() < 1e-9, "{row}");
+        assert!(
+            shipped < paper,
+            "{table} shipped {shipped} not below the paper's {paper}"
+        );
+    }
+    assert!(out.contains("shipped: sky-core's PREETHAM"), "{out}");
 }

@@ -9,6 +9,8 @@ use clap::Args;
 
 use super::gallery::{self, GalleryArgs};
 use super::train::milestone_line;
+use sky_core::neural::{NeuralWeights, pretrained};
+
 use crate::args::seconds;
 use crate::export;
 use crate::sources::{self, ModelKind, SkyParams};
@@ -62,15 +64,22 @@ pub fn run(args: &ShowcaseArgs, output: &mut dyn Write) -> Result<()> {
     let path = args.out.join("neural-preetham.skyn");
     export::write_weights(&path, &weights)?;
     writeln!(output, "wrote {}", path.display())?;
-    let network = |p: &SkyParams| -> Result<Box<dyn sources::SkySource>> {
-        Ok(Box::new(sources::Neural::new(
-            &weights,
-            ModelKind::Neural,
-            p,
-        )?))
-    };
-    let evaluation = crate::eval::evaluate(model, &network)?;
-    write!(output, "{}", evaluation.report())?;
+    let network = network_of(&weights);
+    let this_run = crate::eval::evaluate(model, &network)?;
+    // The shipped weights beside this run's: a short run is a demonstration of the trainer,
+    // the shipped network the product of its long run (docs/training.md).
+    let shipped = crate::eval::evaluate(model, &network_of(&pretrained::PREETHAM))?;
+    write!(
+        output,
+        "{}",
+        crate::eval::report(model, &[("this run", &this_run), ("shipped", &shipped)])
+    )?;
+    writeln!(
+        output,
+        "(this run: {:.0} s of training from scratch; shipped: sky-core's PREETHAM, 630 \
+         iterations of the same trainer, `train --seed 3`, docs/training.md)",
+        trained.seconds
+    )?;
     let params = SkyParams::sun_and_turbidity(0.48 * 180.0, 90.0, 4.0);
     let path = args
         .out
@@ -78,4 +87,17 @@ pub fn run(args: &ShowcaseArgs, output: &mut dyn Write) -> Result<()> {
     crate::eval::write_comparison(&path, model, &*network(&params)?, &params, 512)?;
     writeln!(output, "wrote {}", path.display())?;
     Ok(())
+}
+
+/// The neural sky of `weights` as the evaluation's source.
+fn network_of(
+    weights: &NeuralWeights<12>,
+) -> impl Fn(&SkyParams) -> Result<Box<dyn sources::SkySource>> + '_ {
+    move |p| {
+        Ok(Box::new(sources::Neural::new(
+            weights,
+            ModelKind::Neural,
+            p,
+        )?))
+    }
 }
