@@ -59,6 +59,9 @@ impl Evaluation {
     }
 }
 
+/// One of an evaluation's figures, as [`Evaluation::mean_nrmse`].
+type Figure = fn(&Evaluation) -> f64;
+
 /// Seed 000's Tables 1 and 2 for `model` beside one column per labelled evaluation (labels of at
 /// most 10 characters keep the columns aligned).
 #[must_use]
@@ -76,7 +79,7 @@ pub fn report(model: ModelKind, columns: &[(&str, &Evaluation)]) -> String {
     for (label, _) in columns {
         let _ = write!(s, " {label:>10}");
     }
-    let rows: [(&str, Option<f64>, fn(&Evaluation) -> f64); 2] = [
+    let rows: [(&str, Option<f64>, Figure); 2] = [
         (
             "Table 1: mean NRMSE",
             paper.map(|f| f.nrmse),
