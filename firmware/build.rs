@@ -35,8 +35,8 @@ const BELOW_HORIZON_DEG: (f32, f32) = (100.0, 45.0);
 fn main() -> Result<(), Box<dyn Error>> {
     let out = PathBuf::from(env::var_os("OUT_DIR").ok_or("OUT_DIR is not set")?);
 
-    // The board follows from the target; cortex-m-rt's link.x includes memory.x, which the
-    // linker looks for on its search path.
+    // The board follows from the target; the runtime's link.x (cortex-m-rt's or riscv-rt's)
+    // needs memory.x, which the linker looks for on its search path.
     let target = env::var("TARGET")?;
     let board = match target.as_str() {
         "thumbv7em-none-eabihf" => "mps2-an386",
@@ -56,6 +56,10 @@ fn main() -> Result<(), Box<dyn Error>> {
     fs::copy(&memory, out.join("memory.x"))?;
     println!("cargo:rustc-link-search={}", out.display());
     println!("cargo:rustc-link-arg-bins=--nmagic");
+    // riscv-rt's link.x does not include memory.x itself (cortex-m-rt's does).
+    if board == "virt-rv32" {
+        println!("cargo:rustc-link-arg-bins=-Tmemory.x");
+    }
     println!("cargo:rustc-link-arg-bins=-Tlink.x");
     println!("cargo:rerun-if-changed={memory}");
     println!("cargo:rerun-if-changed=build.rs");
