@@ -10,7 +10,7 @@
 //!
 //! * **Time split exactly.** Grena's time t (days of UT from 2060-01-01 0h) is kept as a whole
 //!   number of days D (an integer) and the fraction of the day f (f32); TT adds ΔT / 86,400 to
-//!   the fraction (ΔT in f32, [`delta_t`]).
+//!   the fraction (ΔT in f32: the Espenak & Meeus-based estimate `SunPosition::new` uses).
 //! * **Large linear terms reduced exactly.** Every angle linear in time, φ + ω t (the mean
 //!   longitude, the annual harmonic, the sidereal angle of 6.3 rad/day, the nutation and the
 //!   seven perturbations of Table 7), is an angle in **turns** in 64-bit fixed point
@@ -157,10 +157,7 @@ fn delta_t(year: i32, month: u32) -> f32 {
         64.69 + 0.2930 * at(2005)
     } else if year < 2026 || (year == 2026 && month <= 6) {
         let t = at(2015);
-        67.62
-            + t * (0.2930
-                + t * (0.087_531_66
-                    + t * (-0.020_049_796 + t * 0.000_975_849_63)))
+        67.62 + t * (0.2930 + t * (0.087_531_66 + t * (-0.020_049_796 + t * 0.000_975_849_63)))
     } else {
         let t = at(2026) - 0.5;
         69.14 + t * (0.288_052_9 + t * 0.005_738_04)
