@@ -35,17 +35,19 @@ const BELOW_HORIZON_DEG: (f32, f32) = (100.0, 45.0);
 fn main() -> Result<(), Box<dyn Error>> {
     let out = PathBuf::from(env::var_os("OUT_DIR").ok_or("OUT_DIR is not set")?);
 
-    // The board follows from the target; cortex-m-rt's link.x includes memory.x, which the
-    // linker looks for on its search path.
+    // The board follows from the target; the runtime's link.x (cortex-m-rt's or riscv-rt's)
+    // needs memory.x, which the linker looks for on its search path.
     let target = env::var("TARGET")?;
     let board = match target.as_str() {
         "thumbv7em-none-eabihf" => "mps2-an386",
         "thumbv7m-none-eabi" => "lm3s6965evb",
         "thumbv6m-none-eabi" => "microbit",
+        "riscv32imac-unknown-none-elf" | "riscv32imc-unknown-none-elf" => "virt-rv32",
         other => {
             return Err(format!(
                 "no board for target {other}: use thumbv7em-none-eabihf (mps2-an386), \
-                 thumbv7m-none-eabi (lm3s6965evb) or thumbv6m-none-eabi (microbit)"
+                 thumbv7m-none-eabi (lm3s6965evb), thumbv6m-none-eabi (microbit), \
+                 riscv32imac-unknown-none-elf or riscv32imc-unknown-none-elf (qemu's virt)"
             )
             .into());
         }
@@ -54,6 +56,10 @@ fn main() -> Result<(), Box<dyn Error>> {
     fs::copy(&memory, out.join("memory.x"))?;
     println!("cargo:rustc-link-search={}", out.display());
     println!("cargo:rustc-link-arg-bins=--nmagic");
+    // riscv-rt's link.x does not include memory.x itself (cortex-m-rt's does).
+    if board == "virt-rv32" {
+        println!("cargo:rustc-link-arg-bins=-Tmemory.x");
+    }
     println!("cargo:rustc-link-arg-bins=-Tlink.x");
     println!("cargo:rerun-if-changed={memory}");
     println!("cargo:rerun-if-changed=build.rs");
@@ -316,7 +322,8 @@ fn cct_or_zero(s: &controller::Step) -> (f32, f32) {
     s.cct.map_or((0.0, 0.0), |c| (c.kelvin, c.duv))
 }
 
-/// Rust source of the controller example's `STEPS`: for every step of the day, what
+/// Rust source of the controller example's `STEPS`: for every step of the day (step k at
+/// k × [`CONTROLLER_STEP_MIN`] minutes), what
 /// [`controller::step`] (the function `sky-train schedule` calls) gives on the host.
 fn controller_expected_table() -> Result<String, Box<dyn Error>> {
     let (site, lamp, times) = controller_day()?;
@@ -326,12 +333,25 @@ fn controller_expected_table() -> Result<String, Box<dyn Error>> {
         let s = controller::step(&time, &site, &controller_settings(), &lamp, None)?;
         let (cct_k, duv) = cct_or_zero(&s);
         let pwm = s.drive.quantise(CONTROLLER_PWM_BITS)?;
+        // The fast sun's degrees are f32 values widened: the table keeps them as f32, and the
+        // firmware compares them widened again, bit for bit.
+        let exact_f32 = |v: f64| {
+            #[allow(clippy::cast_possible_truncation)]
+            let narrow = v as f32;
+            if f64::from(narrow).to_bits() == v.to_bits() {
+                Ok(narrow)
+            } else {
+                Err(format!(
+                    "sun angle {v:?} at minute {minute} is not an f32 value"
+                ))
+            }
+        };
         writeln!(
             steps,
-            "    Expected {{ minute: {minute}, zenith_deg: {:?}, azimuth_deg: {:?}, \
+            "    Expected {{ zenith_deg: {:?}, azimuth_deg: {:?}, \
              lux: {:?}, cct_k: {:?}, duv: {:?}, levels: {:?}, pwm: {pwm:?} }},",
-            s.sun.zenith_deg(),
-            s.sun.azimuth_deg(),
+            exact_f32(s.sun.zenith_deg())?,
+            exact_f32(s.sun.azimuth_deg())?,
             s.illuminance.y,
             cct_k,
             duv,

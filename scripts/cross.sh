@@ -2,12 +2,15 @@
 # Cross-target checks: sky-core builds without std or alloc for a Cortex-M4F, a RISC-V
 # microcontroller and wasm32, and the firmware examples agree with the host under qemu: the f32
 # skies on a Cortex-M4F (mps2-an386), the fixed-point neural sky on a Cortex-M3 (lm3s6965evb)
-# and a Cortex-M0 (microbit), and the lighting controller's day on all three.
-# The sensor-driven controller day runs on the Cortex-M4F and the Cortex-M3.
+# and a Cortex-M0 (microbit), and the lighting controller's day on all three; every example on
+# RISC-V (riscv32imac, qemu-system-riscv32's virt machine) and the controller's day on
+# riscv32imc (no atomics) too. The sensor-driven controller day runs on the Cortex-M4F, the
+# Cortex-M3 and RISC-V. The controller's flash on the Cortex-M0 is held to 48 KiB, and what it
+# is made of is printed (the largest symbols).
 #
-# Then it counts the lighting controller's executed instructions per step on the three cores,
-# under qemu's -icount (firmware/src/bin/controller_instructions.rs): `scripts/cross.sh
-# instructions` does only that.
+# Then it counts the lighting controller's executed instructions per step on the three
+# Cortex-M cores and on RISC-V, under qemu's -icount
+# (firmware/src/bin/controller_instructions.rs): `scripts/cross.sh instructions` does only that.
 #
 # Uses Debian's rustc-web with -Zbuild-std (shared/DESIGN.md, "Toolchains"); the settings live in
 # scripts/cross/config.toml (workspace builds) and firmware/.cargo/config.toml (the firmware).
@@ -17,6 +20,9 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 cross_config="$root/scripts/cross/config.toml"
 target_dir="$root/target/cross"
 qemu="$root/.tools/qemu/usr/bin/qemu-system-arm"
+qemu_riscv="$root/.tools/qemu-misc/usr/bin/qemu-system-riscv32"
+# The controller's flash budget on the Cortex-M0 (bytes of text: a 64 KiB part with room left).
+controller_flash_limit=49152
 bare_metal_targets=(thumbv7em-none-eabihf riscv32imac-unknown-none-elf)
 targets=("${bare_metal_targets[@]}" wasm32-unknown-unknown)
 
@@ -58,11 +64,13 @@ firmware() {
   fi
 
   step "firmware: run $bin under qemu ($machine, $cpu)"
-  # The microbit machine has its one CPU built in (qemu refuses -cpu there).
-  local cpu_args=(-cpu "$cpu")
+  # The microbit machine has its one CPU built in (qemu refuses -cpu there); RISC-V's virt
+  # machine boots the ELF itself (-bios none: no OpenSBI, machine mode from 0x80000000).
+  local qemu_bin=$qemu cpu_args=(-cpu "$cpu")
   [ "$machine" = microbit ] && cpu_args=()
+  case "$target" in riscv32*) qemu_bin=$qemu_riscv cpu_args=(-cpu "$cpu" -bios none) ;; esac
   local status=0
-  timeout 120 "$qemu" -machine "$machine" "${cpu_args[@]}" -nographic "$@" \
+  timeout 120 "$qemu_bin" -machine "$machine" "${cpu_args[@]}" -nographic "$@" \
     -semihosting-config enable=on,target=native -kernel "$elf" || status=$?
   if [ "$status" -ne 0 ]; then
     [ "$status" -eq 124 ] && echo "FAIL: qemu timed out after 120 s" >&2
@@ -112,20 +120,42 @@ runs=(
   "thumbv6m-none-eabi microbit cortex-m0 controller"                   # the same, ARMv6-M
   "thumbv7em-none-eabihf mps2-an386 cortex-m4 weather-controller"      # sensor-driven day, FPU
   "thumbv7m-none-eabi lm3s6965evb cortex-m3 weather-controller"        # the same, soft float
+  "riscv32imac-unknown-none-elf virt rv32 sky-firmware"                # RISC-V: every example
+  "riscv32imac-unknown-none-elf virt rv32 fixed-neural"
+  "riscv32imac-unknown-none-elf virt rv32 controller"
+  "riscv32imac-unknown-none-elf virt rv32 weather-controller"
+  "riscv32imc-unknown-none-elf virt rv32 controller"                   # RV32 without atomics
 )
 for run in "${runs[@]}"; do
   read -r target machine cpu bin features <<<"$run"
   firmware "$target" "$machine" "$cpu" "$bin" "${features:-}"
 done
+
+# What the controller's flash is made of on the Cortex-M0 (docs/firmware.md, "Flash and RAM"):
+# the sections, then the largest symbols (code and named constants; the anonymous constants,
+# the daylight tables and the expected values among them, are .rodata's rest), and the budget.
+elf="$target_dir/thumbv6m-none-eabi/release/controller"
+step "firmware: what the controller's flash is made of on the Cortex-M0 (size -A, nm --size-sort)"
+size -A "$elf" | grep -E '^\.(vector_table|text|rodata|data) '
+nm --size-sort -S -C --radix=d "$elf" | sort -k2,2nr | awk "NR <= 20" |
+  awk '{ size = $2 + 0; $1 = $2 = ""; printf "%8d %s\n", size, substr($0, 3) }'
+flash=$(size "$elf" | awk 'NR == 2 { print $1 }')
+echo "controller flash on the Cortex-M0: $flash B (limit $controller_flash_limit B)"
+if [ "$flash" -gt "$controller_flash_limit" ]; then
+  echo "FAIL: the controller's flash on the Cortex-M0 is over $controller_flash_limit B" >&2
+  exit 1
+fi
 fi # mode all
 
 # The controller step's executed instructions: under -icount every instruction advances the
 # virtual clock by 2^8 ns, and the firmware reads it through SysTick (shift 8 gives each
-# instruction at least 3 ticks of each board's core clock, so the counts are exact).
+# instruction at least 3 ticks of each board's core clock, so the counts are exact) or, on
+# RISC-V, through minstret (qemu reads it from the virtual clock: 256 per instruction).
 instruction_runs=(
   "thumbv7em-none-eabihf mps2-an386 cortex-m4"  # Cortex-M4F: single-precision FPU
   "thumbv7m-none-eabi lm3s6965evb cortex-m3"    # Cortex-M3: no FPU
   "thumbv6m-none-eabi microbit cortex-m0"       # Cortex-M0: no FPU, ARMv6-M
+  "riscv32imac-unknown-none-elf virt rv32"       # RV32IMAC: no FPU
 )
 for run in "${instruction_runs[@]}"; do
   read -r target machine cpu <<<"$run"

@@ -97,6 +97,21 @@ if [ ! -x "$tools/qemu/usr/bin/qemu-system-arm" ]; then
   mv "$tools/qemu.tmp" "$tools/qemu"
 fi
 
+# qemu-system-riscv32 for the RISC-V firmware (scripts/cross.sh): Debian's qemu-system-misc,
+# unpacked into .tools/qemu-misc as qemu-system-arm is (the same libraries; apt would replace
+# the backported qemu-utils here too). A stale package list is updated once.
+if [ ! -x "$tools/qemu-misc/usr/bin/qemu-system-riscv32" ]; then
+  echo "setup: unpacking qemu-system-misc into .tools/qemu-misc"
+  dl=$(mktemp -d) && chmod a+rwx "$dl"
+  (cd "$dl" && apt-get download -qq qemu-system-misc >/dev/null 2>&1) ||
+    (apt-get update -qq && cd "$dl" && apt-get download -qq qemu-system-misc >/dev/null)
+  rm -rf "$tools/qemu-misc.tmp" && mkdir -p "$tools/qemu-misc.tmp"
+  dpkg-deb -x "$dl"/qemu-system-misc_*.deb "$tools/qemu-misc.tmp"
+  rm -rf "$tools/qemu-misc" "$dl"
+  mv "$tools/qemu-misc.tmp" "$tools/qemu-misc"
+fi
+"$tools/qemu-misc/usr/bin/qemu-system-riscv32" --version | head -n 1
+
 # wasm-bindgen-cli must match the wasm-bindgen crate exactly (its output embeds the schema version).
 bindgen_version=$(awk '/^name = "wasm-bindgen"$/ { getline; gsub(/"/, "", $3); print $3 }' "$root/Cargo.lock")
 bindgen="$tools/wasm-bindgen/bin/wasm-bindgen"

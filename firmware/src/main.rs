@@ -10,8 +10,7 @@
 #![no_std]
 #![no_main]
 
-use cortex_m_rt::entry;
-use cortex_m_semihosting::hprintln;
+use qemu_check::{entry, hprintln};
 use sky_core::neural::{NeuralSky, pretrained};
 use sky_core::{PreethamSky, SkyError, Sun, geom};
 
@@ -129,7 +128,7 @@ fn tally(
             usize::from(!pass)
         }
         Err(error) => {
-            hprintln!("{label}: FAIL: {error}");
+            hprintln!("{}: FAIL: {}", label, error);
             1
         }
     }

@@ -2,7 +2,7 @@
 //! host: the reconstruction from the polynomial tables, the ringing filter, the rotation, and
 //! radiance and irradiance, each compared with the values `build.rs` computed on the host.
 
-use cortex_m_semihosting::hprintln;
+use qemu_check::hprintln;
 use sky_core::sh::ShSky;
 use sky_core::{SkyError, Sun, geom};
 

@@ -85,7 +85,7 @@ pub struct Settings {
     pub light: Light,
     /// The horizontal illuminance, lux, at which the luminaire gives its full output.
     pub full_scale_lux: f32,
-    /// The sun position's algorithm: [`SunAlgorithm::Fast`] (2010-2110) by default,
+    /// The sun position's algorithm: [`SunAlgorithm::Fast`] (2000-2110) by default,
     /// [`SunAlgorithm::Spa`] for other years or SPA's precision.
     pub sun: SunAlgorithm,
 }

@@ -63,7 +63,7 @@ impl DaylightDay {
     /// `longitude` (degrees, −180 to 180, east positive) and `elevation` (metres, −500 to
     /// 10 000), under a clear atmosphere of aerosol optical depth `aod` at 550 nm
     /// ([`daylight_min_aod`] to [`daylight_max_aod`]). The sun is the controller's default
-    /// (Grena 2012: the years 2010-2110).
+    /// (Grena 2012: the years 2000-2110).
     ///
     /// # Errors
     /// A parameter outside its range, named with the range in the message.

@@ -604,7 +604,7 @@ fn daylight_bad_input_names_the_parameter_and_its_range() {
         ),
         (
             (1950, 6, 21, 0.0, 100.0, 10.0, 48.21, 16.37, 190.0, 0.43),
-            "year (fast sun position, Grena 2012) = 1950 is outside the valid range [2010, 2110]",
+            "year (fast sun position, Grena 2012) = 1950 is outside the valid range [2000, 2110]",
         ),
     ];
     for (args, text) in cases {

@@ -71,7 +71,7 @@ function daylightDay() {
   const key = [year, month, day, lat, lon, placeElevation, aod].join(",");
   if (key !== daylight.key) {
     daylight = { key, day: null };
-    if (!year) throw new Error("date: enter a date (years 2010 to 2110 for the daylight plot)");
+    if (!year) throw new Error("date: enter a date (years 2000 to 2110 for the daylight plot)");
     const series = DaylightDay.at(year, month, day, 0, 86399, DAYLIGHT_STEP_S, lat, lon,
       placeElevation, aod);
     try {

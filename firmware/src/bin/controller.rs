@@ -13,17 +13,18 @@
 #![no_std]
 #![no_main]
 
-use cortex_m_rt::entry;
-use cortex_m_semihosting::hprintln;
+use qemu_check::{Decimal, entry, hprintln};
 use sky_core::SkyError;
 use sky_core::controller::{Light, Settings, Step, example_luminaire, step};
 use sky_core::solar::{Site, SunAlgorithm, UtcTime};
 
 /// One step of the day as the host computed it.
+/// (Its time is its index times `STEP_MINUTES` from 00:00 UTC.)
 struct Expected {
-    minute: u32,
-    zenith_deg: f64,
-    azimuth_deg: f64,
+    /// The host's f64 zenith and azimuth, exactly f32 values widened (build.rs checks), kept as
+    /// f32 to halve their flash; compared as f64 bits.
+    zenith_deg: f32,
+    azimuth_deg: f32,
     lux: f32,
     cct_k: f32,
     duv: f32,
@@ -53,8 +54,8 @@ fn settings() -> Settings {
 /// How many of the step's values differ from the host's in any bit.
 fn differences(got: &Step, pwm: [u16; 4], want: &Expected) -> usize {
     let f64s = [
-        (got.sun.zenith_deg(), want.zenith_deg),
-        (got.sun.azimuth_deg(), want.azimuth_deg),
+        (got.sun.zenith_deg(), f64::from(want.zenith_deg)),
+        (got.sun.azimuth_deg(), f64::from(want.azimuth_deg)),
     ];
     let mut f32s = [(0.0f32, 0.0f32); 7];
     f32s[0] = (got.illuminance.y, want.lux);
@@ -78,6 +79,8 @@ fn differences(got: &Step, pwm: [u16; 4], want: &Expected) -> usize {
 }
 
 /// Runs the day: the number of steps with any value differing from the host's, and of steps.
+/// (Numbers print as [`Decimal`]s: the binary carries no float formatting.)
+#[allow(clippy::cast_possible_truncation)] // f64 degrees and the site, printed in f32
 fn run() -> Result<(usize, usize), SkyError> {
     let (year, month, day) = DATE;
     let site = Site::new(SITE.0, SITE.1, SITE.2)?;
@@ -88,33 +91,34 @@ fn run() -> Result<(usize, usize), SkyError> {
         year,
         month,
         day,
-        SITE.0,
-        SITE.1,
-        SITE.2,
-        AOD,
-        FULL_SCALE_LUX,
-        PWM_BITS
+        Decimal(SITE.0 as f32, 2),
+        Decimal(SITE.1 as f32, 2),
+        Decimal(SITE.2 as f32, 0),
+        Decimal(AOD, 3),
+        Decimal(FULL_SCALE_LUX, 0),
+        u32::from(PWM_BITS)
     );
-    hprintln!("utc    elev_deg  cct_k     duv       lux           R    G    B    W   check");
+    hprintln!("utc    elev_deg  cct_k     duv       lux            R    G    B    W   check");
     let mut failures = 0;
-    for want in &STEPS {
-        let (hour, minute) = (want.minute / 60, want.minute % 60);
+    for (index, want) in (0u32..).zip(&STEPS) {
+        let minutes = index * STEP_MINUTES;
+        let (hour, minute) = (minutes / 60, minutes % 60);
         let time = UtcTime::new(year, month, day, hour, minute, 0.0)?;
         let got = step(&time, &site, &settings(), &lamp, None)?;
         let pwm = got.drive.quantise(PWM_BITS)?;
         let differ = differences(&got, pwm, want);
         hprintln!(
-            "{:02}:{:02}  {:7.2}  {:8.1}  {:8.5}  {:12.5e}  {:4} {:4} {:4} {:4}  {}",
+            "{:02}:{:02}  {:>7}  {:>8}  {:>8}  {:>13}  {:4} {:4} {:4} {:4}  {}",
             hour,
             minute,
-            got.sun.elevation_deg(),
-            cct_or_zero(&got).0,
-            cct_or_zero(&got).1,
-            got.illuminance.y,
-            pwm[0],
-            pwm[1],
-            pwm[2],
-            pwm[3],
+            Decimal(got.sun.elevation_deg() as f32, 2),
+            Decimal(cct_or_zero(&got).0, 1),
+            Decimal(cct_or_zero(&got).1, 5),
+            Decimal(got.illuminance.y, 5),
+            u32::from(pwm[0]),
+            u32::from(pwm[1]),
+            u32::from(pwm[2]),
+            u32::from(pwm[3]),
             if differ == 0 { "ok" } else { "FAIL" }
         );
         failures += usize::from(differ != 0);

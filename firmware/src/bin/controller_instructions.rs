@@ -1,11 +1,13 @@
 //! Executed instructions per lighting-controller step, counted by the emulator.
 //!
 //! Run under qemu with `-icount shift=N,align=off,sleep=off` (as `scripts/cross.sh` does):
-//! there every executed instruction advances the virtual clock by exactly 2^N ns, so the
-//! SysTick timer, counting the core clock, counts instructions. The ticks per instruction are
-//! calibrated on `cortex_m::asm::delay`, whose loop is two instructions (`subs`, `bne`) per
-//! iteration: the difference between two lengths of it is a known number of instructions. A run
-//! without `-icount` fails that calibration (the loops' ticks are not proportional).
+//! there every executed instruction advances the virtual clock by exactly 2^N ns, so a counter
+//! of that clock counts instructions: SysTick, counting the core clock, on a Cortex-M;
+//! `minstret`, which qemu reads from the virtual clock, on RISC-V. The ticks per instruction are
+//! calibrated on a loop of two instructions per iteration (`cortex_m::asm::delay`'s `subs`,
+//! `bne`; `addi`, `bnez` on RISC-V): the difference between two lengths of it is a known number
+//! of instructions. A run without `-icount` fails that calibration (the loops' ticks are not
+//! proportional).
 //!
 //! For each of the controller example's 144 steps (`src/bin/controller.rs`, the same site,
 //! date and configuration), this counts `sky_core::controller::step` as a whole and its parts
@@ -19,12 +21,8 @@
 #![no_main]
 
 use core::hint::black_box;
-use core::sync::atomic::{AtomicU32, Ordering};
 
-use cortex_m::peripheral::syst::SystClkSource;
-use cortex_m::peripheral::{SCB, SYST};
-use cortex_m_rt::{entry, exception};
-use cortex_m_semihosting::hprintln;
+use qemu_check::{entry, hprintln};
 use sky_core::SkyError;
 use sky_core::color::{self, Xyy};
 use sky_core::controller::{Light, Settings, example_luminaire, step};
@@ -38,48 +36,126 @@ const _: u8 = PWM_BITS; // the PWM levels are the controller example's, not coun
 
 /// Steps in the day.
 const STEPS: usize = (24 * 60 / STEP_MINUTES) as usize;
-/// SysTick's largest reload value: it counts down from here (24 bits).
-const RELOAD: u32 = 0x00FF_FFFF;
 /// Iterations of the calibration loop (two instructions each).
 const CALIBRATION: u32 = 200_000;
 
-/// Times SysTick has wrapped (counted by its exception; each adds the handler's few
-/// instructions to the interval it falls in, once per 2^24 ticks).
-static WRAPS: AtomicU32 = AtomicU32::new(0);
+/// The counter on a Cortex-M: SysTick, counting the core clock down from its 24-bit reload.
+#[cfg(target_arch = "arm")]
+mod counter {
+    use core::sync::atomic::{AtomicU32, Ordering};
 
-#[exception]
-fn SysTick() {
-    // Only this handler writes (ARMv6-M has no atomic read-modify-write).
-    WRAPS.store(
-        WRAPS.load(Ordering::Relaxed).wrapping_add(1),
-        Ordering::Relaxed,
-    );
+    use cortex_m::peripheral::syst::SystClkSource;
+    use cortex_m::peripheral::{SCB, SYST};
+    use cortex_m_rt::exception;
+
+    /// SysTick's largest reload value: it counts down from here (24 bits).
+    const RELOAD: u32 = 0x00FF_FFFF;
+
+    /// Times SysTick has wrapped (counted by its exception; each adds the handler's few
+    /// instructions to the interval it falls in, once per 2^24 ticks).
+    static WRAPS: AtomicU32 = AtomicU32::new(0);
+
+    #[exception]
+    fn SysTick() {
+        // Only this handler writes (ARMv6-M has no atomic read-modify-write).
+        WRAPS.store(
+            WRAPS.load(Ordering::Relaxed).wrapping_add(1),
+            Ordering::Relaxed,
+        );
+    }
+
+    /// Starts SysTick on the core clock; `false` if the core peripherals are taken.
+    pub(crate) fn start() -> bool {
+        let Some(peripherals) = cortex_m::Peripherals::take() else {
+            return false;
+        };
+        let mut syst = peripherals.SYST;
+        syst.set_clock_source(SystClkSource::Core);
+        syst.set_reload(RELOAD);
+        syst.clear_current();
+        syst.enable_interrupt();
+        syst.enable_counter();
+        // Cleared, the counter reads 0 until its first reload.
+        while SYST::get_current() == 0 {}
+        true
+    }
+
+    /// SysTick ticks since it started, read consistently: a wrap that is pending or was
+    /// counted during the read makes it read again.
+    pub(crate) fn ticks() -> u64 {
+        loop {
+            let wraps = WRAPS.load(Ordering::SeqCst);
+            let current = SYST::get_current();
+            if WRAPS.load(Ordering::SeqCst) == wraps && !SCB::is_pendst_pending() {
+                return (u64::from(wraps) << 24) + u64::from(RELOAD - current);
+            }
+        }
+    }
+
+    /// `cortex_m::asm::delay(n)`: n + 1 iterations of a two-instruction loop (`subs`, `bne`),
+    /// always from this one call site (the loop's alignment padding, executed once, is then
+    /// the same).
+    #[inline(never)]
+    pub(crate) fn spin(n: u32) {
+        cortex_m::asm::delay(n);
+    }
 }
 
-/// SysTick ticks since it started, read consistently: a wrap that is pending or was counted
-/// during the read makes it read again.
-fn ticks() -> u64 {
-    loop {
-        let wraps = WRAPS.load(Ordering::SeqCst);
-        let current = SYST::get_current();
-        if WRAPS.load(Ordering::SeqCst) == wraps && !SCB::is_pendst_pending() {
-            return (u64::from(wraps) << 24) + u64::from(RELOAD - current);
+/// The counter on RISC-V: the machine-mode `minstret` (with `minstreth`), which qemu drives
+/// from its virtual clock under `-icount` (and from the host's clock without it).
+#[cfg(target_arch = "riscv32")]
+mod counter {
+    /// Nothing to start: the counter runs from reset in machine mode.
+    pub(crate) fn start() -> bool {
+        true
+    }
+
+    /// `minstreth:minstret`, read consistently (again if the high half moved).
+    pub(crate) fn ticks() -> u64 {
+        loop {
+            let (high, low, again): (u32, u32, u32);
+            // SAFETY: reading machine-mode counters, which the program runs in.
+            unsafe {
+                core::arch::asm!(
+                    "csrr {0}, minstreth",
+                    "csrr {1}, minstret",
+                    "csrr {2}, minstreth",
+                    out(reg) high,
+                    out(reg) low,
+                    out(reg) again,
+                    options(nomem, nostack)
+                );
+            }
+            if high == again {
+                return (u64::from(high) << 32) | u64::from(low);
+            }
+        }
+    }
+
+    /// n + 1 iterations of a two-instruction loop (`addi`, `bnez`), as on the Cortex-M, always
+    /// from this one call site.
+    #[inline(never)]
+    pub(crate) fn spin(n: u32) {
+        // SAFETY: a register-only loop.
+        unsafe {
+            core::arch::asm!(
+                "1:",
+                "addi {0}, {0}, -1",
+                "bnez {0}, 1b",
+                inout(reg) n.wrapping_add(1) => _,
+                options(nomem, nostack)
+            );
         }
     }
 }
+
+use counter::{spin, ticks};
 
 /// The ticks `f` takes, and its result.
 fn measure<T>(f: impl FnOnce() -> T) -> (u64, T) {
     let start = ticks();
     let result = black_box(f());
     (ticks() - start, result)
-}
-
-/// `cortex_m::asm::delay(n)`: n + 1 iterations of a two-instruction loop, always from this one
-/// call site (the loop's alignment padding, executed once, is then the same).
-#[inline(never)]
-fn spin(n: u32) {
-    cortex_m::asm::delay(n);
 }
 
 /// Ticks per instruction, and the ticks of an empty bracket; `None` unless the calibration
@@ -161,23 +237,15 @@ fn run(counts: &mut [Counts; 6], per_instruction: f64, empty: u64) -> Result<boo
 
 #[entry]
 fn main() -> ! {
-    let Some(peripherals) = cortex_m::Peripherals::take() else {
+    if !counter::start() {
         hprintln!("controller-instructions: FAIL: the core peripherals are taken");
         qemu_check::finish(false)
-    };
-    let mut syst = peripherals.SYST;
-    syst.set_clock_source(SystClkSource::Core);
-    syst.set_reload(RELOAD);
-    syst.clear_current();
-    syst.enable_interrupt();
-    syst.enable_counter();
-    // Cleared, the counter reads 0 until its first reload.
-    while SYST::get_current() == 0 {}
+    }
 
     let Some((per_instruction, empty)) = calibrate() else {
         hprintln!(
-            "controller-instructions: FAIL: SysTick does not count instructions; run under \
-             qemu with -icount shift=8,align=off,sleep=off"
+            "controller-instructions: FAIL: the counter does not count instructions; run \
+             under qemu with -icount shift=8,align=off,sleep=off"
         );
         qemu_check::finish(false)
     };
@@ -196,13 +264,16 @@ fn main() -> ! {
     let same = match run(&mut counts, per_instruction, empty) {
         Ok(same) => same,
         Err(error) => {
-            hprintln!("controller-instructions: FAIL: {error}");
+            hprintln!(
+                "controller-instructions: FAIL: {}",
+                qemu_check::Message(error)
+            );
             qemu_check::finish(false)
         }
     };
     hprintln!(
         "controller-instructions: {} steps of {} min; executed instructions (qemu -icount, {:.3} \
-         SysTick ticks per instruction)",
+         counter ticks per instruction)",
         STEPS,
         STEP_MINUTES,
         per_instruction

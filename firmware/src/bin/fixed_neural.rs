@@ -8,8 +8,7 @@
 #![no_std]
 #![no_main]
 
-use cortex_m_rt::entry;
-use cortex_m_semihosting::hprintln;
+use qemu_check::{entry, hprintln};
 use sky_core::neural::{FixedNeuralSky, FixedNeuralWeights, pretrained};
 use sky_core::{SkyError, Sun};
 
@@ -73,7 +72,7 @@ fn main() -> ! {
                 failures += usize::from(differ != 0);
             }
             Err(error) => {
-                hprintln!("case {index:2}: {}: FAIL: {error}", case.network);
+                hprintln!("case {:2}: {}: FAIL: {}", index, case.network, error);
                 failures += 1;
             }
         }

@@ -13,8 +13,7 @@
 #![no_std]
 #![no_main]
 
-use cortex_m_rt::entry;
-use cortex_m_semihosting::hprintln;
+use qemu_check::{entry, hprintln};
 use sky_core::SkyError;
 use sky_core::controller::{Light, Measurement, Settings, Step, example_luminaire, step};
 use sky_core::solar::{Site, SunAlgorithm, UtcTime};

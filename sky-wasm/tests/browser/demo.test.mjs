@@ -271,7 +271,7 @@ test("the daylight plot is drawn from the bindings' values, which are native sky
     return new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));
   });
   assert.equal(await page.textContent("#daylight-error"),
-    "year (fast sun position, Grena 2012) = 1950 is outside the valid range [2010, 2110]");
+    "year (fast sun position, Grena 2012) = 1950 is outside the valid range [2000, 2110]");
   assert.equal(await page.textContent("#error"), "");
   await set({ date: "2026-06-21", "sun-from": "angles" });
   assert.equal(await page.textContent("#daylight-error"), "");
