@@ -170,10 +170,11 @@ impl<W: Write> Stdout<W> {
     }
 
     fn keep<T>(&mut self, r: std::io::Result<T>) -> std::io::Result<T> {
-        if let Err(e) = &r {
-            if self.error.is_none() && e.kind() != std::io::ErrorKind::Interrupted {
-                self.error = Some(std::io::Error::new(e.kind(), e.to_string()));
-            }
+        if let Err(e) = &r
+            && self.error.is_none()
+            && e.kind() != std::io::ErrorKind::Interrupted
+        {
+            self.error = Some(std::io::Error::new(e.kind(), e.to_string()));
         }
         r
     }

@@ -346,13 +346,13 @@ fn check_plots(args: &DaylightArgs, list: &[f64]) -> Result<(), ParamError> {
         output_path::file_ending("--plot-cct", p, &["png"])?;
         chart_range("--plot-cct", list, CCT_CHART_LOWEST)?;
     }
-    if let (Some(a), Some(b)) = (&args.plot_illuminance, &args.plot_cct) {
-        if same_file(a, b) {
-            return Err(ParamError(format!(
-                "--plot-illuminance and --plot-cct name the same file {}: give each chart its own",
-                b.display()
-            )));
-        }
+    if let (Some(a), Some(b)) = (&args.plot_illuminance, &args.plot_cct)
+        && same_file(a, b)
+    {
+        return Err(ParamError(format!(
+            "--plot-illuminance and --plot-cct name the same file {}: give each chart its own",
+            b.display()
+        )));
     }
     Ok(())
 }

@@ -174,13 +174,13 @@ impl AtmosphereArgs {
 /// cannot be written (stdout closed or full) is said on stderr, unless the reader went away
 /// (a closed pipe), and is not an error.
 pub(crate) fn report_written(output: &mut dyn std::io::Write, path: &Path) {
-    if let Err(e) = writeln!(output, "wrote {}", path.display()) {
-        if e.kind() != std::io::ErrorKind::BrokenPipe {
-            eprintln!(
-                "sky-train: wrote {} (cannot write this to stdout: {e})",
-                path.display()
-            );
-        }
+    if let Err(e) = writeln!(output, "wrote {}", path.display())
+        && e.kind() != std::io::ErrorKind::BrokenPipe
+    {
+        eprintln!(
+            "sky-train: wrote {} (cannot write this to stdout: {e})",
+            path.display()
+        );
     }
 }
 
