@@ -52,6 +52,7 @@ pub(crate) fn describe(
             let (open_min, open_max) = (positive || value == min, value == max);
             let min = if positive { 0.0 } else { min };
             if positive && max >= f32::MAX {
+                let value = crate::csv_output::compact_f32(value);
                 return format!("{}{separator}{value} must be positive", name(base));
             }
             let (value, min, max, unit) = match unit {
@@ -68,6 +69,7 @@ pub(crate) fn describe(
                 if open_min { "(" } else { "[" },
                 if open_max { ")" } else { "]" },
             );
+            let [value, min, max] = [value, min, max].map(crate::csv_output::compact_f32);
             format!(
                 "{}{separator}{value}{unit} is outside the valid range {low}{min}, {max}{high}{unit}",
                 name(base)

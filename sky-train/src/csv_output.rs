@@ -60,6 +60,20 @@ pub fn compact(v: f64) -> String {
     }
 }
 
+/// An f32 for a message, as [`compact`] writes an f64: its shortest round-trip decimal, with
+/// an exponent from 1e6 up and below 1e-4 (`3.4028235e38`, not 39 digits).
+#[must_use]
+pub fn compact_f32(v: f32) -> String {
+    let a = v.abs();
+    if v == 0.0 {
+        "0".into()
+    } else if !v.is_finite() || !(1e-4..1e6).contains(&a) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -85,5 +99,8 @@ mod tests {
         assert_eq!(compact(100_000.0), "100000");
         assert_eq!(compact(0.0001), "0.0001");
         assert_eq!(compact(-0.5), "-0.5");
+        assert_eq!(compact_f32(f32::MAX), "3.4028235e38");
+        assert_eq!(compact_f32(0.1), "0.1");
+        assert_eq!(compact_f32(60.0), "60");
     }
 }

@@ -528,6 +528,63 @@ fn time_messages_name_the_field_and_its_range() {
     }
 }
 
+/// Issue 25 item 11: `--diffuse-lux 1e39` was echoed as "inf" with a 39-digit range, and
+/// other values as 31 digits. Values and ranges are printed compactly, as the user typed them.
+#[test]
+fn values_and_ranges_are_printed_compactly() {
+    for (args, needles) in [
+        (
+            vec![
+                "sample",
+                "--model",
+                "preetham",
+                "--sun-zenith",
+                "40",
+                "--turbidity",
+                "1e30",
+            ],
+            vec!["--turbidity 1e30", "[2, 6]"],
+        ),
+        (
+            vec![
+                "daylight",
+                "--model",
+                "preetham",
+                "--elevations",
+                "0:1:1",
+                "--turbidity",
+                "1e30",
+            ],
+            vec!["--turbidity 1e30", "[2, 6]"],
+        ),
+        (
+            vec![
+                "sample",
+                "--model",
+                "cie",
+                "--cie-type",
+                "3",
+                "--sun-zenith",
+                "40",
+                "--diffuse-lux",
+                "1e39",
+            ],
+            vec!["1e39", "[0, 1e9]"],
+        ),
+    ] {
+        let out = sky_train(&args, "0,0\n");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(
+            !stderr.contains("000000") && !stderr.contains("inf"),
+            "{args:?}: {stderr}"
+        );
+        for n in needles {
+            assert!(stderr.contains(n), "{args:?}: `{stderr}` lacks `{n}`");
+        }
+    }
+}
+
 /// The subcommands, from `sky-train --help` (and `captures`' own).
 fn subcommands() -> Vec<Vec<String>> {
     let list = |args: &[&str]| -> Vec<String> {

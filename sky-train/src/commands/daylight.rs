@@ -397,7 +397,8 @@ pub fn run(args: &DaylightArgs, output: &mut dyn Write) -> Result<()> {
             let t = args.turbidity.unwrap_or(3.0);
             if !(2.0..=6.0).contains(&t) {
                 return Err(ParamError(format!(
-                    "--turbidity {t} is outside the valid range [2, 6] for --model preetham"
+                    "--turbidity {} is outside the valid range [2, 6] for --model preetham",
+                    crate::csv_output::compact(t)
                 ))
                 .into());
             }
