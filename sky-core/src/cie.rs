@@ -51,6 +51,22 @@ pub const STANDARD_SKIES: [[f32; 5]; 15] = [
 /// (CIE 015:2018, Table T.3: x = 0.31272, y = 0.32903), the CIE's representative daylight.
 pub const D65: (f32, f32) = (0.312_72, 0.329_03);
 
+/// The largest zenith luminance a CIE sky takes, cd/m²: above the sun's own disc (about
+/// 1.6e9 cd/m² at noon), and low enough that no product of the evaluation (the circumsolar
+/// peak of 180 times the zenith's, XYZ of a chromaticity with y = 0.001, linear sRGB,
+/// the horizontal integral) reaches f32's range (3.4e38): every value is finite.
+pub const MAX_ZENITH_LUMINANCE: f32 = 1e10;
+
+/// The largest diffuse horizontal illuminance a CIE sky is scaled to, lux: far above any
+/// daylight (the sun outside the atmosphere gives 1.33e5 lx), and low enough that the zenith
+/// luminance it gives stays below [`MAX_ZENITH_LUMINANCE`] for every type and sun.
+pub const MAX_DIFFUSE_ILLUMINANCE: f32 = 1e9;
+
+/// The smallest chromaticity y a sky takes: every real colour has y above 0.0048 (the
+/// spectrum locus's lowest point, 380-400 nm, and the purple line; CIE 015:2018, Table
+/// T.4), and with y at least this, X and Z = (x, 1 − x − y) Y / y stay finite.
+pub const MIN_CHROMATICITY_Y: f32 = 1e-3;
+
 /// cos Z is clamped to at least this in the gradation (φ tends to 1 at the horizon for b < 0,
 /// and e^{b / 1e-6} is 0 in f32 for every type).
 const MIN_COS_ZENITH: f32 = 1e-6;
@@ -94,14 +110,19 @@ pub struct CieSky {
 
 impl CieSky {
     /// The sky of type `sky_type` (1-15) for `sun` with zenith luminance `zenith_luminance`
-    /// (cd/m², finite, at least 0).
+    /// (cd/m², 0 to [`MAX_ZENITH_LUMINANCE`]).
     ///
     /// # Errors
-    /// [`SkyError::OutOfRange`] for a type outside 1-15 or a negative, NaN or infinite zenith
-    /// luminance; [`SkyError::SunBelowHorizon`] for a sun zenith above π/2.
+    /// [`SkyError::OutOfRange`] for a type outside 1-15 or a zenith luminance outside
+    /// [0, [`MAX_ZENITH_LUMINANCE`]] (or NaN); [`SkyError::SunBelowHorizon`] for a sun zenith
+    /// above π/2.
     pub fn new(sky_type: u8, sun: Sun, zenith_luminance: f32) -> Result<Self, SkyError> {
-        let zenith_luminance =
-            check_range("zenith luminance [cd/m²]", zenith_luminance, 0.0, f32::MAX)?;
+        let zenith_luminance = check_range(
+            "zenith luminance [cd/m²]",
+            zenith_luminance,
+            0.0,
+            MAX_ZENITH_LUMINANCE,
+        )?;
         let mut sky = Self::relative(sky_type, sun)?;
         sky.zenith_luminance = zenith_luminance;
         sky.scale *= zenith_luminance;
@@ -109,10 +130,11 @@ impl CieSky {
     }
 
     /// The sky of type `sky_type` (1-15) for `sun`, scaled so that its illuminance on a
-    /// horizontal plane is `diffuse_illuminance` (lux, finite, at least 0).
+    /// horizontal plane is `diffuse_illuminance` (lux, 0 to [`MAX_DIFFUSE_ILLUMINANCE`]).
     ///
     /// # Errors
-    /// As [`CieSky::new`], naming the diffuse illuminance.
+    /// As [`CieSky::new`], naming the diffuse illuminance and its range
+    /// [0, [`MAX_DIFFUSE_ILLUMINANCE`]].
     pub fn from_diffuse_illuminance(
         sky_type: u8,
         sun: Sun,
@@ -122,7 +144,7 @@ impl CieSky {
             "diffuse illuminance [lx]",
             diffuse_illuminance,
             0.0,
-            f32::MAX,
+            MAX_DIFFUSE_ILLUMINANCE,
         )?;
         let relative = Self::relative(sky_type, sun)?;
         // Every type is positive over the whole hemisphere, so the integral is too.
@@ -166,7 +188,8 @@ impl CieSky {
     /// The same sky with the chromaticity (`x`, `y`) (CIE 1931) everywhere.
     ///
     /// # Errors
-    /// [`SkyError::OutOfRange`] for x outside [0, 1] or y outside (0, 1] (or NaN).
+    /// [`SkyError::OutOfRange`] for x outside [0, 1] or y outside [[`MIN_CHROMATICITY_Y`], 1]
+    /// (or NaN).
     pub fn with_chromaticity(self, x: f32, y: f32) -> Result<Self, SkyError> {
         Ok(Self {
             chromaticity: check_chromaticity(x, y)?,
@@ -234,10 +257,10 @@ impl Photometry for CieSky {
     }
 }
 
-/// Checks a CIE 1931 chromaticity: x in [0, 1], y in (0, 1].
+/// Checks a CIE 1931 chromaticity: x in [0, 1], y in [[`MIN_CHROMATICITY_Y`], 1].
 pub(crate) fn check_chromaticity(x: f32, y: f32) -> Result<(f32, f32), SkyError> {
     let x = check_range("chromaticity x", x, 0.0, 1.0)?;
-    let y = check_range("chromaticity y", y, f32::MIN_POSITIVE, 1.0)?;
+    let y = check_range("chromaticity y", y, MIN_CHROMATICITY_Y, 1.0)?;
     Ok((x, y))
 }
 
@@ -264,6 +287,58 @@ mod tests {
             "{ls:?}"
         );
         assert!((overcast.luminance(Vec3::Z) - 5_000.0).abs() < 0.1);
+    }
+
+    /// Issue 25: the largest levels allowed, every type, sun from the zenith to the horizon,
+    /// the most extreme chromaticities: every luminance, XYZ, linear sRGB and illuminance is
+    /// finite; just above the bounds the constructors refuse.
+    #[test]
+    fn the_brightest_skies_allowed_stay_finite() {
+        let dirs: [Vec3; 7] = [
+            Vec3::Z,
+            Vec3::X,
+            Vec3::new(0.3, 0.1, 0.95),
+            Vec3::new(1.0, 0.0, 1e-7),
+            Vec3::new(-1.0, 0.2, 0.01),
+            Vec3::new(0.0, 1.0, 1.0),
+            Vec3::new(0.7, -0.7, 0.1),
+        ];
+        let mut largest = 0.0f32;
+        for sky_type in 1..=15u8 {
+            for k in 0..=18u8 {
+                let zs = f32::from(k) * 5f32.to_radians();
+                let sun = Sun::new(zs.min(FRAC_PI_2), 0.3).expect("sun");
+                let by_lz = CieSky::new(sky_type, sun, MAX_ZENITH_LUMINANCE).expect("sky");
+                let by_e = CieSky::from_diffuse_illuminance(sky_type, sun, MAX_DIFFUSE_ILLUMINANCE)
+                    .expect("diffuse sky within the zenith luminance's range");
+                for sky in [by_lz, by_e] {
+                    for (x, y) in [(0.0, MIN_CHROMATICITY_Y), (1.0, MIN_CHROMATICITY_Y), D65] {
+                        let sky = sky.with_chromaticity(x, y).expect("chromaticity");
+                        for d in dirs {
+                            let xyz = sky.xyz(d);
+                            let rgb = color::xyz_to_linear_srgb(xyz);
+                            assert!(xyz.is_finite() && rgb.is_finite(), "{sky_type} {zs} {d}");
+                            largest = largest.max(xyz.abs().max_element());
+                        }
+                    }
+                    assert!(sky.horizontal_illuminance().is_finite());
+                    assert!(sky.zenith_luminance().is_finite());
+                }
+            }
+        }
+        // Far from f32::MAX: the margin the bounds claim.
+        assert!(largest < 1e20, "{largest}");
+        let sun = Sun::new(1.0, 0.0).expect("sun");
+        assert!(CieSky::new(12, sun, 3e38).is_err());
+        assert!(CieSky::new(12, sun, MAX_ZENITH_LUMINANCE * 1.01).is_err());
+        assert!(CieSky::from_diffuse_illuminance(12, sun, 3e38).is_err());
+        assert!(CieSky::from_diffuse_illuminance(12, sun, f32::INFINITY).is_err());
+        assert!(
+            CieSky::new(12, sun, 1.0)
+                .expect("sky")
+                .with_chromaticity(0.3, 1e-30)
+                .is_err()
+        );
     }
 
     #[test]

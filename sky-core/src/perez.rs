@@ -356,7 +356,8 @@ impl PerezSky {
     /// The same sky with the chromaticity (`x`, `y`) (CIE 1931) everywhere.
     ///
     /// # Errors
-    /// [`SkyError::OutOfRange`] for x outside [0, 1] or y outside (0, 1] (or NaN).
+    /// [`SkyError::OutOfRange`] for x outside [0, 1] or y outside
+    /// [[`crate::cie::MIN_CHROMATICITY_Y`], 1] (or NaN).
     pub fn with_chromaticity(self, x: f32, y: f32) -> Result<Self, SkyError> {
         Ok(Self {
             chromaticity: check_chromaticity(x, y)?,

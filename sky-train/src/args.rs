@@ -52,6 +52,7 @@ pub(crate) fn describe(
             let (open_min, open_max) = (positive || value == min, value == max);
             let min = if positive { 0.0 } else { min };
             if positive && max >= f32::MAX {
+                let value = crate::csv_output::compact_f32(value);
                 return format!("{}{separator}{value} must be positive", name(base));
             }
             let (value, min, max, unit) = match unit {
@@ -68,6 +69,7 @@ pub(crate) fn describe(
                 if open_min { "(" } else { "[" },
                 if open_max { ")" } else { "]" },
             );
+            let [value, min, max] = [value, min, max].map(crate::csv_output::compact_f32);
             format!(
                 "{}{separator}{value}{unit} is outside the valid range {low}{min}, {max}{high}{unit}",
                 name(base)
@@ -110,7 +112,11 @@ pub fn radians(deg: f64) -> f32 {
 pub fn in_range(s: &str, min: f64, max: f64, what: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(v) if (min..=max).contains(&v) => Ok(v),
-        _ => Err(format!("expected {what} in [{min}, {max}]")),
+        _ => Err(format!(
+            "expected {what} in [{}, {}]",
+            crate::csv_output::compact(min),
+            crate::csv_output::compact(max)
+        )),
     }
 }
 
@@ -192,20 +198,32 @@ pub fn parse_date(s: &str) -> Result<(i32, u32, u32), ParamError> {
             "--date `{s}`: expected YYYY-MM-DD, e.g. 2026-06-21"
         ))
     };
+    let (y, m, d) = date_fields(s).ok_or_else(bad)?;
+    UtcTime::new(y, m, d, 0, 0, 0.0).map_err(|e| {
+        ParamError(format!(
+            "--date {s}: {} (the supported years)",
+            describe(e, str::to_owned, " = ")
+        ))
+    })?;
+    Ok((y, m, d))
+}
+
+/// The fields of `YYYY-MM-DD`, when `s` has that form (whatever their values).
+#[must_use]
+pub fn date_fields(s: &str) -> Option<(i32, u32, u32)> {
     let mut parts = s.trim().split('-');
     let (Some(y), Some(m), Some(d), None) =
         (parts.next(), parts.next(), parts.next(), parts.next())
     else {
-        return Err(bad());
+        return None;
     };
     if y.len() != 4 || m.len() != 2 || d.len() != 2 {
-        return Err(bad());
+        return None;
     }
     let (Ok(y), Ok(m), Ok(d)) = (y.parse::<i32>(), m.parse::<u32>(), d.parse::<u32>()) else {
-        return Err(bad());
+        return None;
     };
-    UtcTime::new(y, m, d, 0, 0, 0.0).map_err(|e| ParamError(format!("--date {s}: {e}")))?;
-    Ok((y, m, d))
+    Some((y, m, d))
 }
 
 /// [`parse_date`] as a clap value parser.

@@ -89,6 +89,10 @@ pub enum Command {
     /// Read CIE 1931 `x,y` lines on stdin (a header line is allowed) and write
     /// `x,y,cct_k,duv`: correlated colour temperature (1000-100000 K) and Duv (positive above
     /// the Planckian locus, ANSI C78.377).
+    ///
+    /// cct_k and duv are empty where |Duv| > 0.05 (CIE 015:2018: no CCT so far from the
+    /// locus) or the chromaticity is outside the spectrum locus (no light has it, e.g. 0.6,0.6),
+    /// the rule `daylight` follows.
     Cct,
     /// The physical atmosphere's spectral irradiance at the ground for one sun position: CSV
     /// `wavelength_nm,global_horizontal,diffuse_horizontal,direct_horizontal,direct_normal` in
@@ -142,5 +146,48 @@ pub fn execute(command: Command, input: &mut dyn BufRead, output: &mut dyn Write
         Command::DaylightTables(args) => commands::daylight_tables::run(&args, output),
         Command::DaylightSky(args) => commands::daylight_sky::run(&args, output),
         Command::FitAod(args) => commands::fit_aod::run(&args, output),
+    }
+}
+
+/// The binary's stdout as the commands' `output`: it remembers the first write error, so that
+/// `main` can tell a failure of stdout (a closed pipe, a full disk) from a failure of the work,
+/// whatever context a command wrapped the error in.
+pub struct Stdout<W: Write> {
+    inner: W,
+    error: Option<std::io::Error>,
+}
+
+impl<W: Write> Stdout<W> {
+    /// Wraps `inner`.
+    pub fn new(inner: W) -> Self {
+        Self { inner, error: None }
+    }
+
+    /// The first error a write or flush returned, if any.
+    #[must_use]
+    pub fn error(&self) -> Option<&std::io::Error> {
+        self.error.as_ref()
+    }
+
+    fn keep<T>(&mut self, r: std::io::Result<T>) -> std::io::Result<T> {
+        if let Err(e) = &r
+            && self.error.is_none()
+            && e.kind() != std::io::ErrorKind::Interrupted
+        {
+            self.error = Some(std::io::Error::new(e.kind(), e.to_string()));
+        }
+        r
+    }
+}
+
+impl<W: Write> Write for Stdout<W> {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let r = self.inner.write(buf);
+        self.keep(r)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        let r = self.inner.flush();
+        self.keep(r)
     }
 }

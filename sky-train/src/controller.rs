@@ -176,29 +176,33 @@ pub fn parse_measurements(
     Ok(rows)
 }
 
-/// The fields of one schedule row after its time ([`SCHEDULE_HEADER`]).
+/// The fields of one schedule row after its time ([`SCHEDULE_HEADER`]), each number by
+/// [`crate::csv_output::number`].
 fn row_fields(s: &Step) -> String {
     let (sun, e, levels, d) = (s.sun, s.illuminance, s.drive.levels, s.daylight);
-    let (cct_k, duv) = s.cct.map_or((String::new(), String::new()), |c| {
-        (format!("{:.2}", c.kelvin), format!("{:.6}", c.duv))
-    });
     let (x, y) = sky_core::daylight::chromaticity(e);
-    format!(
-        "{:.5},{:.5},{:.5},{:.5},{cct_k},{duv},{:.6e},{:.6},{:.6},{:.6},{:.6},{:.6e},{:.6e},{:.6e},{x:.6},{y:.6},{:.6e}",
-        sun.zenith_deg(),
-        sun.azimuth_deg(),
-        sun.elevation_deg(),
-        sun.apparent_zenith_deg(),
-        e.y,
-        levels[0],
-        levels[1],
-        levels[2],
-        levels[3],
-        d.global().y,
-        d.diffuse().y,
-        d.direct().y,
-        s.melanopic_edi,
-    )
+    let f = |v: f32| Some(f64::from(v));
+    [
+        Some(sun.zenith_deg()),
+        Some(sun.azimuth_deg()),
+        Some(sun.elevation_deg()),
+        Some(sun.apparent_zenith_deg()),
+        s.cct.and_then(|c| f(c.kelvin)),
+        s.cct.and_then(|c| f(c.duv)),
+        f(e.y),
+        f(levels[0]),
+        f(levels[1]),
+        f(levels[2]),
+        f(levels[3]),
+        f(d.global().y),
+        f(d.diffuse().y),
+        f(d.direct().y),
+        f(x),
+        f(y),
+        f(s.melanopic_edi),
+    ]
+    .map(|v| v.map_or_else(String::new, crate::csv_output::number))
+    .join(",")
 }
 
 /// Writes the schedule at the times of `rows` (from [`read_measurements`]) driven by their
@@ -233,11 +237,11 @@ pub fn schedule_measured(
             .weather
             .map_or((0, 0.0), |w| (w.sky_type, w.clear_sky_index));
         lines.push(format!(
-            "{},{},{},{:.6}",
+            "{},{},{},{}",
             r.unix.rfc3339(),
             row_fields(&s),
             w.0,
-            w.1
+            crate::csv_output::number(f64::from(w.1))
         ));
     }
     writeln!(output, "{SCHEDULE_HEADER},{MEASURED_COLUMNS}")?;

@@ -22,7 +22,7 @@ use std::fmt::Write as _;
 use std::io::{BufRead, BufReader, Write as _};
 use std::path::Path;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 
 use crate::image_io::write_atomically;
 use crate::physical::constituents::{EARTH_RADIUS_M, N_WAVELENGTHS as NW, wavelength_nm};
@@ -134,13 +134,23 @@ pub fn write_samples(path: &Path, samples: &[DiffuseSample]) -> Result<()> {
     })
 }
 
+/// The range every illuminance of [`DATA_PATH`] must lie in, lux: positive, and at most
+/// 2e5 lx, above the sun's own illuminance outside the atmosphere (1.33e5 lx) on every
+/// channel (X, Y, Z, melanopic EDI), which no diffuse light at the ground reaches.
+pub const SAMPLE_RANGE_LUX: (f64, f64) = (0.0, 2e5);
+
 /// Reads the samples of `path` and checks they are the grid [`sample`] writes: every
 /// optical depth of [`AOD_NODES`] at every [`elevation_nodes`] elevation, in that order, with
-/// positive finite values.
+/// finite values in (0, 2e5] lux ([`SAMPLE_RANGE_LUX`]).
 ///
 /// # Errors
-/// Naming the file and line of the first bad row.
+/// A [`crate::args::ParamError`] (bad input, exit status 2) naming the file and line of the
+/// first bad row or field, and for a file without the header or rows; a plain error when it
+/// cannot be read.
 pub fn read_samples(path: &Path) -> Result<Vec<DiffuseSample>> {
+    use crate::args::ParamError;
+    let bad =
+        |line: usize, what: String| ParamError(format!("{}: line {line}: {what}", path.display()));
     let file =
         std::fs::File::open(path).with_context(|| format!("cannot read {}", path.display()))?;
     let elevations = elevation_nodes();
@@ -148,11 +158,13 @@ pub fn read_samples(path: &Path) -> Result<Vec<DiffuseSample>> {
         .iter()
         .flat_map(|&a| elevations.iter().map(move |&h| (a, h)));
     let mut out = Vec::new();
+    let mut lines = 0;
     for (n, line) in BufReader::new(file).lines().enumerate() {
         let line = line.with_context(|| format!("cannot read {}", path.display()))?;
+        lines = n + 1;
         if n == 0 {
             if line.trim() != HEADER {
-                bail!("{}: line 1: expected the header {HEADER}", path.display());
+                return Err(bad(1, format!("expected the header {HEADER}")).into());
             }
             continue;
         }
@@ -160,24 +172,31 @@ pub fn read_samples(path: &Path) -> Result<Vec<DiffuseSample>> {
             .split(',')
             .map(|v| v.trim().parse::<f64>())
             .collect::<Result<_, _>>()
-            .with_context(|| format!("{}: line {}: not numbers", path.display(), n + 1))?;
+            .map_err(|_| bad(n + 1, "not numbers".into()))?;
         let Some((aod, h)) = expected.next() else {
-            bail!(
-                "{}: line {}: more rows than the grid",
-                path.display(),
-                n + 1
-            );
+            return Err(bad(n + 1, "more rows than the grid".into()).into());
         };
-        let ok = values.len() == 6
-            && values[0] == aod
-            && (values[1] - h).abs() < 1e-9
-            && values[2..].iter().all(|v| *v > 0.0 && v.is_finite());
-        if !ok {
-            bail!(
-                "{}: line {}: expected aod {aod}, elevation {h} and four positive values",
-                path.display(),
-                n + 1
-            );
+        if !(values.len() == 6 && values[0] == aod && (values[1] - h).abs() < 1e-9) {
+            return Err(bad(
+                n + 1,
+                format!("expected aod {aod}, elevation {h} and four values"),
+            )
+            .into());
+        }
+        let (lo, hi) = SAMPLE_RANGE_LUX;
+        let columns = ["x_lux", "y_lux", "z_lux", "melanopic_edi_lux"];
+        for (v, column) in values[2..].iter().zip(columns) {
+            if !(*v > lo && *v <= hi) {
+                return Err(bad(
+                    n + 1,
+                    format!(
+                        "{column} = {} is outside the valid range ({lo}, {}] lux",
+                        crate::csv_output::compact(*v),
+                        crate::csv_output::compact(hi)
+                    ),
+                )
+                .into());
+            }
         }
         out.push(DiffuseSample {
             aod,
@@ -185,8 +204,19 @@ pub fn read_samples(path: &Path) -> Result<Vec<DiffuseSample>> {
             xyzm: [values[2], values[3], values[4], values[5]],
         });
     }
+    if lines == 0 {
+        return Err(ParamError(format!("{}: the file is empty", path.display())).into());
+    }
     if expected.next().is_some() {
-        bail!("{}: fewer rows than the grid", path.display());
+        return Err(bad(
+            lines,
+            format!(
+                "the data ends here, before the grid does ({} rows of {})",
+                out.len(),
+                AOD_NODES.len() * elevations.len()
+            ),
+        )
+        .into());
     }
     Ok(out)
 }

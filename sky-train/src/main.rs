@@ -29,9 +29,28 @@ fn main() -> ExitCode {
         }
     };
     let stdin = io::stdin();
-    let stdout = io::stdout();
-    let result = cli::execute(cli.command, &mut stdin.lock(), &mut stdout.lock());
-    let _ = io::stdout().flush();
+    let mut stdout = cli::Stdout::new(io::stdout().lock());
+    let mut result = cli::execute(cli.command, &mut stdin.lock(), &mut stdout);
+    // A command that met a write error and went on (its work done, only its report lost)
+    // has said so; the flush's retry of that report is not a new failure.
+    let reported = stdout.error().is_some();
+    if result.is_ok()
+        && let Err(e) = stdout.flush()
+        && !reported
+    {
+        result = Err(e.into());
+    }
+    // A failed write to stdout, whatever the command made of it: a reader that went away
+    // (`| head -1`) ends the program quietly with status 0, as ripgrep does; any other failure
+    // (a full disk, /dev/full) is named as stdout's, status 1.
+    // (A command that finished its work and only failed to report it has returned Ok.)
+    if let (Err(_), Some(e)) = (&result, stdout.error()) {
+        if e.kind() == io::ErrorKind::BrokenPipe {
+            return ExitCode::SUCCESS;
+        }
+        eprintln!("error: cannot write to stdout: {e}");
+        return ExitCode::from(1);
+    }
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

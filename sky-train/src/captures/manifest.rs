@@ -124,7 +124,9 @@ pub struct UnixTime(pub f64);
 
 impl UnixTime {
     /// Parses RFC 3339, `YYYY-MM-DDTHH:MM:SS[.fff]` followed by `Z` (UTC) or a UTC offset
-    /// `±HH:MM` (a camera's local time: `2026-06-21T08:00:00+02:00` is 06:00 UTC).
+    /// `±HH:MM` (a camera's local time: `2026-06-21T08:00:00+02:00` is 06:00 UTC), years
+    /// 1 to 2999 (sky-core's [`sky_core::solar::UtcTime`]). A leap second, `23:59:60`, is read
+    /// as the first instant of the next day (POSIX time's reading: no leap seconds counted).
     ///
     /// # Errors
     /// When `s` is not of that form or a field is out of range.
@@ -157,7 +159,7 @@ impl UnixTime {
             }
         };
         let (date, time) = body.split_once(['T', ' ']).ok_or_else(bad)?;
-        let (y, m, d) = crate::args::parse_date(date).map_err(|_| bad())?;
+        let (y, m, d) = crate::args::date_fields(date).ok_or_else(bad)?;
         let mut hms = time.split(':');
         let (Some(h), Some(mi), Some(sec), None) = (hms.next(), hms.next(), hms.next(), hms.next())
         else {
@@ -167,7 +169,33 @@ impl UnixTime {
         else {
             return Err(bad());
         };
-        sky_core::solar::UtcTime::new(y, m, d, h, mi, sec).map_err(|e| anyhow::anyhow!("{e}"))?;
+        // A leap second, 23:59:60.x (RFC 3339 allows it at the end of a day): no leap seconds
+        // are counted, so it is read as the next day's first second, as POSIX time reads it.
+        #[allow(clippy::cast_possible_truncation)] // whole minutes of an offset below a day
+        let utc_minute =
+            (i64::from(h * 60 + mi) - (offset_seconds / 60.0) as i64).rem_euclid(24 * 60);
+        let leap = utc_minute == 24 * 60 - 1 && (60.0..61.0).contains(&sec);
+        let checked = if leap { 59.0 } else { sec };
+        if !(0.0..60.0).contains(&checked) {
+            bail!(
+                "time `{s}`: second = {sec} is outside the valid range [0, 60) (60 only in the leap second 23:59:60 UTC)"
+            );
+        }
+        sky_core::solar::UtcTime::new(y, m, d, h, mi, checked).map_err(|e| {
+            let year = matches!(
+                e,
+                sky_core::SkyError::OutOfRange {
+                    parameter: "year",
+                    ..
+                }
+            );
+            let what = crate::args::describe(e, str::to_owned, " = ");
+            if year {
+                anyhow::anyhow!("time `{s}`: {what} (the supported years)")
+            } else {
+                anyhow::anyhow!("time `{s}`: {what}")
+            }
+        })?;
         Ok(Self(
             Self::from_civil(y, m, d, h, mi, sec).0 - offset_seconds,
         ))

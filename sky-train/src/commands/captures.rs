@@ -82,7 +82,15 @@ pub struct InterpolateArgs {
     /// Output width in pixels (height = width / 2; default: the captures' width).
     #[arg(long, value_parser = clap::value_parser!(u32).range(16..=16384))]
     pub width: Option<u32>,
+    /// The most frames to write (1 to 1,000,000): a --step that would give more is refused
+    /// before anything is rendered.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_FRAMES, value_parser = clap::value_parser!(u32).range(1..=1_000_000))]
+    pub max_frames: u32,
 }
+
+/// `captures interpolate --max-frames`' default: a day of minutes is 1,440 frames; a thousand
+/// 1024 x 512 OpenEXR frames are about 6 GB.
+pub const DEFAULT_MAX_FRAMES: u32 = 1000;
 
 /// `captures synthesize`'s arguments.
 #[derive(Args)]
@@ -162,6 +170,17 @@ pub fn run(command: &CapturesCommand, output: &mut dyn Write) -> Result<()> {
             let seq = load_for_suns(&args.input)?;
             let loaded = started.elapsed().as_secs_f64();
             let steps = interpolate::steps(&seq, args.step, args.interval)?;
+            if steps.len() > args.max_frames as usize {
+                return Err(ParamError(format!(
+                    "--step {} min would write {} frames to --out {} for {} captures, more than --max-frames {}: give a longer --step or a larger --max-frames",
+                    crate::csv_output::compact(args.step),
+                    steps.len(),
+                    args.out.display(),
+                    seq.frames.len(),
+                    args.max_frames
+                ))
+                .into());
+            }
             let width = args.width.map_or(seq.width, |w| w as usize);
             let rendering = Instant::now();
             let paths = interpolate::write_steps(&weights, &steps, width, &args.out, true)?;

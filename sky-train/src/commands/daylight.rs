@@ -140,10 +140,6 @@ fn plots(args: &DaylightArgs, rows: &[Row]) -> Result<()> {
         points_only,
         points: rows.iter().map(|r| (r.0, f(r))).collect(),
     };
-    let (lo, hi) = (
-        list.iter().copied().fold(f64::INFINITY, f64::min),
-        list.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-    );
     let usno = RGBColor(0, 0, 0);
     if let Some(path) = &args.plot_illuminance {
         // The global curve of each preset whose atmosphere is not the one drawn, the other
@@ -176,7 +172,7 @@ fn plots(args: &DaylightArgs, rows: &[Row]) -> Result<()> {
             path,
             "Horizontal illuminance of the clear sky",
             "illuminance (lx)",
-            (lo, hi),
+            chart_range("--plot-illuminance", &list, ELEVATION_RANGE.0)?,
             (1e-4, 3e5),
             true,
             &[
@@ -242,7 +238,7 @@ fn plots(args: &DaylightArgs, rows: &[Row]) -> Result<()> {
             path,
             "CCT of the global horizontal light",
             "CCT (K)",
-            (lo.max(-8.0), hi),
+            chart_range("--plot-cct", &list, CCT_CHART_LOWEST)?,
             (3_000.0, 30_000.0),
             true,
             &[
@@ -309,9 +305,70 @@ pub fn elevation_list((from, to, step): (f64, f64, f64)) -> Vec<f64> {
     (0..n).map(|k| from + sign * step * k as f64).collect()
 }
 
-fn field(v: Option<f64>, precision: usize) -> String {
-    v.filter(|x| x.is_finite())
-        .map_or_else(String::new, |x| format!("{x:.precision$}"))
+fn field(v: Option<f64>) -> String {
+    v.map_or_else(String::new, crate::csv_output::number)
+}
+
+/// The elevation range (lowest, highest) a chart draws, or the error that names why it would
+/// be empty: a chart needs at least two elevations within its axis (the CCT chart's starts at
+/// [`CCT_CHART_LOWEST`]).
+fn chart_range(flag: &str, list: &[f64], lowest: f64) -> Result<(f64, f64), ParamError> {
+    let drawn: Vec<f64> = list.iter().copied().filter(|&h| h >= lowest).collect();
+    let (lo, hi) = (
+        drawn.iter().copied().fold(f64::INFINITY, f64::min),
+        drawn.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+    );
+    if drawn.len() < 2 || hi <= lo {
+        let within = if lowest > ELEVATION_RANGE.0 {
+            format!(" at or above {lowest} deg")
+        } else {
+            String::new()
+        };
+        return Err(ParamError(format!(
+            "{flag} draws a curve against elevation: it needs at least two different --elevations{within}, and these give {}",
+            drawn.len()
+        )));
+    }
+    Ok((lo, hi))
+}
+
+/// The lowest sun elevation the CCT chart draws, degrees: below it the global light's
+/// chromaticity is too far from the Planckian locus for a CCT (|Duv| > 0.05).
+pub const CCT_CHART_LOWEST: f64 = -8.0;
+
+/// Checks before any work that the charts asked for can be drawn and go to two files.
+fn check_plots(args: &DaylightArgs, list: &[f64]) -> Result<(), ParamError> {
+    if let Some(p) = &args.plot_illuminance {
+        output_path::file_ending("--plot-illuminance", p, &["png"])?;
+        chart_range("--plot-illuminance", list, ELEVATION_RANGE.0)?;
+    }
+    if let Some(p) = &args.plot_cct {
+        output_path::file_ending("--plot-cct", p, &["png"])?;
+        chart_range("--plot-cct", list, CCT_CHART_LOWEST)?;
+    }
+    if let (Some(a), Some(b)) = (&args.plot_illuminance, &args.plot_cct)
+        && same_file(a, b)
+    {
+        return Err(ParamError(format!(
+            "--plot-illuminance and --plot-cct name the same file {}: give each chart its own",
+            b.display()
+        )));
+    }
+    Ok(())
+}
+
+/// Whether `a` and `b` name the same file: the same path once their folders are resolved.
+fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
+    let resolve = |p: &std::path::Path| {
+        let dir = p
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(std::path::Path::new("."));
+        std::fs::canonicalize(p)
+            .ok()
+            .or_else(|| Some(std::fs::canonicalize(dir).ok()?.join(p.file_name()?)))
+    };
+    a == b || matches!((resolve(a), resolve(b)), (Some(x), Some(y)) if x == y)
 }
 
 /// Writes one row per elevation to `output`.
@@ -321,12 +378,7 @@ fn field(v: Option<f64>, precision: usize) -> String {
 pub fn run(args: &DaylightArgs, output: &mut dyn Write) -> Result<()> {
     let list = elevation_list(args.elevations);
     let plotting = args.plot_illuminance.is_some() || args.plot_cct.is_some();
-    if let Some(p) = &args.plot_illuminance {
-        output_path::file_ending("--plot-illuminance", p, &["png"])?;
-    }
-    if let Some(p) = &args.plot_cct {
-        output_path::file_ending("--plot-cct", p, &["png"])?;
-    }
+    check_plots(args, &list)?;
     let rows = match args.model {
         ModelKind::Physical => physical_rows(args, &list)?,
         ModelKind::Preetham => {
@@ -345,7 +397,8 @@ pub fn run(args: &DaylightArgs, output: &mut dyn Write) -> Result<()> {
             let t = args.turbidity.unwrap_or(3.0);
             if !(2.0..=6.0).contains(&t) {
                 return Err(ParamError(format!(
-                    "--turbidity {t} is outside the valid range [2, 6] for --model preetham"
+                    "--turbidity {} is outside the valid range [2, 6] for --model preetham",
+                    crate::csv_output::compact(t)
                 ))
                 .into());
             }
@@ -364,21 +417,21 @@ pub fn run(args: &DaylightArgs, output: &mut dyn Write) -> Result<()> {
     let mut out = BufWriter::new(output);
     writeln!(out, "{HEADER}")?;
     for (h, diffuse, direct, g) in rows {
-        writeln!(
-            out,
-            "{h},{:.6e},{:.6e},{:.6e},{},{},{},{},{}",
-            g.xyz[1],
-            diffuse,
-            direct,
-            field(Some(g.xy.0), 5),
-            field(Some(g.xy.1), 5),
-            field(g.cct_duv.map(|c| c.0), 0),
-            field(g.cct_duv.map(|c| c.1), 5),
-            field(
-                Some(g.melanopic_edi).filter(|_| args.model == ModelKind::Physical),
-                6
-            ),
-        )?;
+        let cct = g.cct_duv;
+        let melanopic = Some(g.melanopic_edi).filter(|_| args.model == ModelKind::Physical);
+        let fields = [
+            Some(h),
+            Some(g.xyz[1]),
+            Some(diffuse),
+            Some(direct),
+            Some(g.xy.0),
+            Some(g.xy.1),
+            cct.map(|c| c.0),
+            cct.map(|c| c.1),
+            melanopic,
+        ]
+        .map(field);
+        writeln!(out, "{}", fields.join(","))?;
     }
     out.flush()?;
     Ok(())

@@ -19,11 +19,18 @@ pub struct Curve {
     pub points: Vec<(f64, f64)>,
 }
 
+/// An x-axis tick's label: its value to a millionth of a degree, shortest form (`10.5`, not
+/// `10` for every tick of a one-degree axis).
+#[must_use]
+pub fn tick_label(v: f64) -> String {
+    crate::csv_output::compact((v * 1e6).round() / 1e6)
+}
+
 /// The charts' size in pixels.
 pub const SIZE: (u32, u32) = (1200, 750);
 
-/// Draws `curves` against sun elevation over `x`, on a log y axis over `y` when `log`, to the
-/// PNG file `path`.
+/// Draws `curves` against sun elevation over `x` (points outside it left out), on a log y
+/// axis over `y` when `log`, to the PNG file `path`.
 ///
 /// # Errors
 /// A drawing error, or the file cannot be written.
@@ -56,7 +63,7 @@ pub fn chart(
                     .configure_mesh()
                     .x_desc("sun elevation (degrees, geometric)")
                     .y_desc(y_desc)
-                    .x_label_formatter(&|v| format!("{v:.0}"))
+                    .x_label_formatter(&|v| tick_label(*v))
                     .y_label_formatter(&|v| {
                         if *v >= 1.0 {
                             format!("{v:.0}")
@@ -70,11 +77,9 @@ pub fn chart(
                     .map_err(|e| anyhow!("{e}"))?;
                 for c in curves {
                     let color = c.color;
-                    let pts = c
-                        .points
-                        .iter()
-                        .copied()
-                        .filter(|p| p.1.is_finite() && (!log || p.1 > 0.0));
+                    let pts = c.points.iter().copied().filter(|p| {
+                        p.1.is_finite() && (!log || p.1 > 0.0) && (x.0..=x.1).contains(&p.0)
+                    });
                     if c.points_only {
                         chart
                             .draw_series(pts.map(|p| Circle::new(p, 5, color.filled())))

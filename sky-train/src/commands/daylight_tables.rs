@@ -59,6 +59,6 @@ pub fn run(args: &DaylightTablesArgs, output: &mut dyn Write) -> Result<()> {
     let samples = tables::read_samples(&args.data)?;
     let source = tables::rust_source(&samples, &tables::beam());
     write_atomically(&args.out, |f| Ok(f.write_all(source.as_bytes())?))?;
-    writeln!(output, "wrote {}", args.out.display())?;
+    super::report_written(output, &args.out);
     Ok(())
 }

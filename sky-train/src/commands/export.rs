@@ -37,12 +37,12 @@ pub struct ExportArgs {
     /// that sky alone); without it the shader reads them from a uniform array.
     #[arg(long)]
     pub constants: bool,
-    /// wgsl: the uniform array's `@group`.
-    #[arg(long, default_value_t = 0)]
-    pub group: u32,
-    /// wgsl: the uniform array's `@binding`.
-    #[arg(long, default_value_t = 0)]
-    pub binding: u32,
+    /// wgsl without --constants: the uniform array's `@group` (default 0).
+    #[arg(long)]
+    pub group: Option<u32>,
+    /// wgsl without --constants: the uniform array's `@binding` (default 0).
+    #[arg(long)]
+    pub binding: Option<u32>,
 }
 
 /// `export --format`.
@@ -66,6 +66,7 @@ pub enum ExportFormat {
 /// A missing or inapplicable argument (a [`ParamError`]), an unreadable weight file, weights
 /// that do not fit Q7.24, a failed write.
 pub fn run(args: &ExportArgs, output: &mut dyn Write) -> Result<()> {
+    check_applies(args)?;
     output_path::file("--out", &args.out, Folder::Existing)?;
     let text = match args.format {
         ExportFormat::F32 | ExportFormat::Fixed => {
@@ -97,7 +98,57 @@ pub fn run(args: &ExportArgs, output: &mut dyn Write) -> Result<()> {
         ExportFormat::Js => sky_gpu::js_module(),
     };
     image_io::write_text(&args.out, &text)?;
-    writeln!(output, "wrote {}", args.out.display())?;
+    super::report_written(output, &args.out);
+    Ok(())
+}
+
+/// Refuses a flag the format does not use (issue 25: they were dropped without a word).
+fn check_applies(args: &ExportArgs) -> Result<(), ParamError> {
+    let format = args
+        .format
+        .to_possible_value()
+        .map_or_else(String::new, |v| v.get_name().to_owned());
+    let (weights, shader, wgsl_uniform, js) = match args.format {
+        ExportFormat::F32 | ExportFormat::Fixed => (true, false, false, false),
+        ExportFormat::Glsl => (false, true, false, false),
+        ExportFormat::Wgsl => (false, true, !args.constants, false),
+        ExportFormat::Js => (false, false, false, true),
+    };
+    let params_given = args.sky.params()? != SkyParams::default();
+    let refused = [
+        (args.name.is_some() && !weights, "--name", "f32 and fixed"),
+        (
+            args.sky.model != ModelKind::Preetham && !shader,
+            "--model",
+            "glsl and wgsl",
+        ),
+        (args.constants && !shader, "--constants", "glsl and wgsl"),
+        (
+            args.group.is_some() && !wgsl_uniform,
+            "--group",
+            "wgsl without --constants",
+        ),
+        (
+            args.binding.is_some() && !wgsl_uniform,
+            "--binding",
+            "wgsl without --constants",
+        ),
+        (
+            params_given && !shader,
+            "--sun-zenith/--sun-azimuth/--turbidity/--style/--bands (the sky's parameters)",
+            "glsl and wgsl with --constants",
+        ),
+        (
+            js && args.sky.weights.is_some(),
+            "--weights",
+            "f32, fixed, glsl and wgsl",
+        ),
+    ];
+    if let Some((_, flag, applies)) = refused.iter().find(|r| r.0) {
+        return Err(ParamError(format!(
+            "{flag} does not apply to --format {format} (only to {applies})"
+        )));
+    }
     Ok(())
 }
 
@@ -131,8 +182,8 @@ fn shader_source(args: &ExportArgs, lang: sky_gpu::Language) -> Result<String> {
         return Ok(shader.source(
             lang,
             sky_gpu::Storage::Uniform {
-                group: args.group,
-                binding: args.binding,
+                group: args.group.unwrap_or(0),
+                binding: args.binding.unwrap_or(0),
             },
         ));
     }

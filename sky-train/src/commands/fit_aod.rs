@@ -52,6 +52,14 @@ pub fn run(args: &FitAodArgs, output: &mut dyn Write) -> Result<()> {
         ))
         .into());
     }
+    if options.cache_dir.is_some() {
+        // Refused before the minutes of work: it would be ignored.
+        return Err(ParamError(
+            "--cache-dir does not apply to fit-aod (the atmospheres of its evaluations are not cached)"
+                .into(),
+        )
+        .into());
+    }
     let base = options.atmosphere(None)?;
     let list = record::fit_elevations();
     let mut out = BufWriter::new(output);
@@ -119,7 +127,8 @@ pub fn run(args: &FitAodArgs, output: &mut dyn Write) -> Result<()> {
     writeln!(out, "sun_elevation_deg,global_lux,usno_lux,ratio")?;
     for (h, l) in ratios {
         let usno = usno_illuminance(h);
-        writeln!(out, "{h},{:.6e},{usno:.6e},{:.4}", usno * l.exp(), l.exp())?;
+        let fields = [h, usno * l.exp(), usno, l.exp()].map(crate::csv_output::number);
+        writeln!(out, "{}", fields.join(","))?;
     }
     out.flush()?;
     Ok(())

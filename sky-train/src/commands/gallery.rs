@@ -20,8 +20,9 @@ pub struct GalleryArgs {
     /// Output folder (created if missing).
     #[arg(long, value_name = "DIR", default_value = "out")]
     pub out: PathBuf,
-    /// Image width in pixels (2 to 16384).
-    #[arg(long, value_name = "W", default_value_t = 512, value_parser = clap::value_parser!(u32).range(2..=16384))]
+    /// Image width in pixels (4 to 16384: the contact sheet shows the upper hemisphere,
+    /// width / 4 rows high).
+    #[arg(long, value_name = "W", default_value_t = 512, value_parser = clap::value_parser!(u32).range(4..=16384))]
     pub width: u32,
 }
 

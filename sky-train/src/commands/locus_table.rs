@@ -24,6 +24,6 @@ pub struct LocusTableArgs {
 pub fn run(args: &LocusTableArgs, output: &mut dyn Write) -> Result<()> {
     crate::output_path::file("--out", &args.out, crate::output_path::Folder::Existing)?;
     image_io::write_text(&args.out, &planckian::locus_table_source())?;
-    writeln!(output, "wrote {}", args.out.display())?;
+    super::report_written(output, &args.out);
     Ok(())
 }

@@ -31,7 +31,7 @@ use clap::{Args, ValueEnum};
 use sky_core::geom::{Equirect, Extent};
 use sky_core::neural::NeuralWeights;
 
-use crate::args::{elevation, finite, latitude, longitude, non_negative};
+use crate::args::{elevation, finite, latitude, longitude};
 use crate::sources::{self, ModelKind, ParamError, SkyParams};
 
 /// The arguments that select one sky.
@@ -80,11 +80,13 @@ pub struct SkyArgs {
     /// CIE standard general sky type, 1 (overcast) to 15 (cloudless, turbid) (cie only).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u8).range(1..=15))]
     cie_type: Option<u8>,
-    /// Diffuse horizontal illuminance the CIE sky is scaled to, lux (cie only; default 10000).
-    #[arg(long, value_name = "LUX", value_parser = non_negative)]
+    /// Diffuse horizontal illuminance the CIE sky is scaled to, lux, 0 to 1e9 (cie only;
+    /// default 10000).
+    #[arg(long, value_name = "LUX", value_parser = cie_diffuse_lux)]
     diffuse_lux: Option<f64>,
-    /// Zenith luminance the CIE sky is scaled to, cd/m2 (cie only; instead of --diffuse-lux).
-    #[arg(long, value_name = "CD", value_parser = non_negative)]
+    /// Zenith luminance the CIE sky is scaled to, cd/m2, 0 to 1e10 (cie only; instead of
+    /// --diffuse-lux).
+    #[arg(long, value_name = "CD", value_parser = cie_zenith_luminance)]
     zenith_luminance: Option<f64>,
     /// Measured global horizontal irradiance, W/m2 (perez only; split by Erbs et al. 1982
     /// without --dhi).
@@ -98,6 +100,18 @@ pub struct SkyArgs {
     global_lux: Option<f64>,
     #[command(flatten)]
     atmosphere: AtmosphereArgs,
+}
+
+/// `--diffuse-lux`: 0 to [`sky_core::cie::MAX_DIFFUSE_ILLUMINANCE`] lux.
+fn cie_diffuse_lux(s: &str) -> Result<f64, String> {
+    let max = f64::from(sky_core::cie::MAX_DIFFUSE_ILLUMINANCE);
+    crate::args::in_range(s, 0.0, max, "an illuminance (lux)")
+}
+
+/// `--zenith-luminance`: 0 to [`sky_core::cie::MAX_ZENITH_LUMINANCE`] cd/m2.
+fn cie_zenith_luminance(s: &str) -> Result<f64, String> {
+    let max = f64::from(sky_core::cie::MAX_ZENITH_LUMINANCE);
+    crate::args::in_range(s, 0.0, max, "a luminance (cd/m2)")
 }
 
 /// The atmosphere of `--model physical`: a preset (docs/daylight.md), each flag in place of
@@ -153,6 +167,20 @@ impl AtmosphereArgs {
             albedo: self.albedo,
             cache_dir: self.cache_dir.clone(),
         }
+    }
+}
+
+/// Reports on `output` that `path` was written. The work is done by then: a report that
+/// cannot be written (stdout closed or full) is said on stderr, unless the reader went away
+/// (a closed pipe), and is not an error.
+pub(crate) fn report_written(output: &mut dyn std::io::Write, path: &Path) {
+    if let Err(e) = writeln!(output, "wrote {}", path.display())
+        && e.kind() != std::io::ErrorKind::BrokenPipe
+    {
+        eprintln!(
+            "sky-train: wrote {} (cannot write this to stdout: {e})",
+            path.display()
+        );
     }
 }
 

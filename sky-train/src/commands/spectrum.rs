@@ -67,15 +67,15 @@ pub fn run(args: &SpectrumArgs, output: &mut dyn Write) -> Result<()> {
     let mut out = BufWriter::new(output);
     writeln!(out, "{HEADER}")?;
     for l in 0..e.global.len() {
-        writeln!(
-            out,
-            "{},{:.6e},{:.6e},{:.6e},{:.6e}",
+        let fields = [
             wavelength_nm(l),
             e.global[l],
             e.diffuse[l],
             e.direct_horizontal[l],
-            e.direct_normal[l]
-        )?;
+            e.direct_normal[l],
+        ]
+        .map(crate::csv_output::number);
+        writeln!(out, "{}", fields.join(","))?;
     }
     out.flush()?;
     Ok(())

@@ -59,12 +59,12 @@ pub const RECORD_AOD_550: f64 = 0.38;
 /// preset with its aerosol optical depth.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
 pub enum Preset {
-    /// The measured clear-sky record's (the default): τ₅₅₀ = [`RECORD_AOD_550`], fitted to
-    /// USNO Circular 171 (Brown 1952's cloudless but, by today's standards, turbid skies).
+    /// The measured clear-sky record's (the default): τ₅₅₀ = 0.38 (`RECORD_AOD_550`), fitted
+    /// to USNO Circular 171 (Brown 1952's cloudless but, by today's standards, turbid skies).
     #[default]
     Record,
-    /// Today's clean clear continental sky: OPAC's continental average, τ₅₅₀ =
-    /// [`CLEAN_AOD_550`].
+    /// Today's clean clear continental sky: OPAC's continental average, τ₅₅₀ = 0.151
+    /// (`CLEAN_AOD_550`).
     Clean,
 }
 
