@@ -269,6 +269,14 @@ pub fn efficacies(epsilon: f64, delta: f64, z: f64, w: f64) -> [f64; 3] {
     ]
 }
 
+/// The Perez 1990 direct efficacy (lm/W) of [`efficacies`] before its max(0, ·).
+#[must_use]
+pub fn direct_efficacy_unclamped(epsilon: f64, delta: f64, z: f64, w: f64) -> f64 {
+    let k = bin(epsilon);
+    let d = delta.clamp(0.01, 0.6);
+    BEAM_A[k] + BEAM_B[k] * w + BEAM_C[k] * (5.73 * z - 5.0).exp() + BEAM_D[k] * d
+}
+
 /// Erbs et al. 1982, eq. 1: the hourly diffuse fraction at clearness index `kt`.
 #[must_use]
 pub fn erbs(kt: f64) -> f64 {
