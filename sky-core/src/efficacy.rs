@@ -14,7 +14,7 @@
 //! errors are the paper's and are not restated here.
 //!
 //! **Continuous in ε** (a deviation from the paper, whose coefficients step at the bin edges:
-//! up to 27 % in the global efficacy between bins 1 and 2 at the extremes of Δ, a few per cent
+//! up to 40 % in the global efficacy between bins 1 and 2 at the extremes of Δ and water, a few per cent
 //! at typical skies): the coefficients hold as tabulated at each bin's centre
 //! ([`BIN_CENTRES`]: the middle of bins 1-7, and for the open bin 8 its lower edge 6.2 plus half
 //! of bin 7's width) and are interpolated linearly in ε between neighbouring centres (below

@@ -150,7 +150,7 @@ fn sample_perez_agrees_with_the_reference() {
         let i = (g - d_used) / z.cos();
         let epsilon = reference::sky_clearness(d_used, i, z);
         let delta = reference::sky_brightness(d_used, z, day);
-        let [_, k_diffuse, _] = reference::efficacies(epsilon, delta, z, 2.0);
+        let [_, k_diffuse, _] = reference::interpolated_efficacies(epsilon, delta, z, 2.0);
         let coefficients = reference::all_weather(epsilon, delta, z);
         let az_r = az.to_radians();
         let rel_l = |t: f64, p: f64| reference::all_weather_luminance(coefficients, t, p, z, az_r);
@@ -260,7 +260,7 @@ fn schedule_measurements_agree_with_the_reference() {
         let i = (g - d) / z.cos();
         let epsilon = reference::sky_clearness(d, i, z);
         let delta = reference::sky_brightness(d, z, day);
-        let [k_global, _, _] = reference::efficacies(epsilon, delta, z, 2.0);
+        let [k_global, _, _] = reference::interpolated_efficacies(epsilon, delta, z, 2.0);
         let lux = g * k_global;
         worst = worst.max((num(f[7]) - lux).abs() / lux);
         worst = worst.max((num(f[18]) - lux).abs() / lux);
@@ -605,7 +605,8 @@ fn a_raw_surfrad_file_runs() {
     for (f, r) in lines.iter().zip(&kept) {
         let want = format!("2016-01-01T{:02}:{:02}:00Z", r[4], r[5]);
         assert_eq!(f[0], want);
-        worst_zenith = worst_zenith.max((num(f[1]) - r[7]).abs());
+        // SURFRAD's `zen` is the apparent (refracted) zenith.
+        worst_zenith = worst_zenith.max((num(f[4]) - r[7]).abs());
         let (ghi, dhi) = (num(f[15]), num(f[16]));
         assert!((ghi - r[8].max(0.0)).abs() < 1e-4, "{f:?} {r:?}");
         assert!(dhi <= ghi, "{f:?}");
@@ -622,12 +623,13 @@ fn a_raw_surfrad_file_runs() {
         }
     }
     println!(
-        "SURFRAD Alamosa: {} rows, {night} with the sun down, {clamped} diffuse readings above the global; sun zenith within {worst_zenith:.3} deg of the file's",
+        "SURFRAD Alamosa: {} rows, {night} with the sun down, {clamped} diffuse readings above the global; apparent sun zenith within {worst_zenith:.3} deg of the file's",
         lines.len()
     );
     assert!(clamped > 0 && night > 0);
-    // SURFRAD's zen column is given to 0.01 deg, for the middle of the minute or its start.
-    assert!(worst_zenith < 0.3, "{worst_zenith}");
+    // SURFRAD's zen column is given to 0.01 deg; it leads or lags by about 0.1 deg near the
+    // horizon, as if for the middle of the minute (the sun moves 0.18 deg a minute there).
+    assert!(worst_zenith < 0.15, "{worst_zenith}");
 }
 
 /// Issue 24 item 3: an NREL MIDC raw-data file as delivered (University of Arizona, Tucson,
