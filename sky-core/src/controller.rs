@@ -76,13 +76,13 @@ pub struct Weather {
     pub clear_sky: Vec3,
     /// The measured global illuminance over the clear sky's ([`Weather::clear_sky`]); `None`
     /// where the clear sky's global illuminance is below [`MIN_CLEAR_SKY_LUX`] (the sun more
-    /// than about 1.5° below the horizon), where a ratio would only measure the sensor's noise
+    /// than about 3° below the horizon), where a ratio would only measure the sensor's noise
     /// over the twilight (a night reading of 0.3 W/m² gave 1.6e8).
     pub clear_sky_index: Option<f32>,
     /// The overcast fraction of [`crate::overcast`] (0 clear, 1 overcast) of the ratio
     /// (E + L) / (E_clear + L), E the measured and E_clear the clear sky's global illuminance,
-    /// L = [`MIN_CLEAR_SKY_LUX`]: the clear-sky index by day (within L / E_clear, under 1 % with
-    /// the sun above about 5°), 1 for a reading equal to the clear sky, and continuous into the
+    /// L = [`MIN_CLEAR_SKY_LUX`]: the clear-sky index by day (within L / E_clear: under 2.5 % with
+    /// the sun above 5°, 1 % above 10°), 1 for a reading equal to the clear sky, and continuous into the
     /// night (where it tends to 1: nothing tells the cloud, the light keeps the clear sky's
     /// colour at the measured level).
     pub overcast_fraction: f32,
@@ -90,8 +90,8 @@ pub struct Weather {
 
 /// The clear sky's global horizontal illuminance, lx, below which the clear-sky index is not
 /// defined ([`Weather::clear_sky_index`]): 100 lx, about 1 W/m², the order of a pyranometer's
-/// thermal offset, and reached by the default clear sky with the sun about 1.5° below the
-/// horizon.
+/// thermal offset, and reached by the default clear sky with the sun about 3° below the
+/// horizon (2.8° at Vienna at the equinox).
 pub const MIN_CLEAR_SKY_LUX: f32 = 100.0;
 
 /// Which daylight the luminaire follows.

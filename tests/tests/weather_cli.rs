@@ -633,7 +633,7 @@ fn a_raw_surfrad_file_runs() {
 }
 
 /// Issue 24 item 3: an NREL MIDC raw-data file as delivered (University of Arizona, Tucson,
-/// 18 October 2018, times in MST: night rows with globals of −2.4 W/m², a diffuse of 0)
+/// 18 October 2018, times in MST: night rows with globals down to −2.6 W/m², a diffuse of 0)
 /// runs with no NaN anywhere, its times shifted from MST to UTC, its global the first `Global
 /// Horiz` column's (the tracker's) and its diffuse the file's.
 #[test]
