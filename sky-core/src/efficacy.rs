@@ -80,7 +80,7 @@ pub const BIN_CENTRES: [f32; 8] = [1.0325, 1.1475, 1.365, 1.725, 2.375, 3.65, 5.
 /// constant beyond the first and the last (NaN counts as bin 1's).
 fn coefficients(table: &EfficacyTable, epsilon: f32) -> [f32; 4] {
     let last = BIN_CENTRES.len() - 1;
-    if !(epsilon > BIN_CENTRES[0]) {
+    if epsilon.is_nan() || epsilon <= BIN_CENTRES[0] {
         return table[0];
     }
     if epsilon >= BIN_CENTRES[last] {

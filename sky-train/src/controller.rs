@@ -60,7 +60,7 @@ pub const MEASURED_HEADER: &str = "utc,sun_zenith_deg,sun_azimuth_deg,sun_elevat
 /// How a measurement file is laid out.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum MeasurementFormat {
-    /// CSV with a header naming `utc` and `global_lux` or `ghi_wm2` [`dhi_wm2`]
+    /// CSV with a header naming `utc` and `global_lux`, or `ghi_wm2` and optionally `dhi_wm2`
     /// ([`parse_measurements`]).
     #[default]
     Csv,
@@ -223,7 +223,7 @@ pub fn parse_measurements(
 
 /// Where a file's fields are.
 enum Layout {
-    /// `utc` and `global_lux` or `ghi_wm2` [`dhi_wm2`], by column index.
+    /// `utc` and `global_lux`, or `ghi_wm2` and optionally `dhi_wm2`, by column index.
     Csv {
         utc: usize,
         lux: Option<usize>,

@@ -70,7 +70,7 @@ pub struct ScheduleArgs {
 /// `--measurements-format`.
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum FormatArg {
-    /// CSV with a header naming utc and global_lux or ghi_wm2 [dhi_wm2].
+    /// CSV with a header naming utc and global_lux, or ghi_wm2 and optionally dhi_wm2.
     Csv,
     /// A NOAA SURFRAD daily file.
     Surfrad,
