@@ -249,7 +249,7 @@ fn schedule_measurements_agree_with_the_reference() {
             "sky_type"
         ]
     );
-    let mut worst = 0.0f64;
+    let (mut worst, mut worst_parts) = (0.0f64, 0.0f64);
     for (line, (t, g, _)) in lines.zip(readings) {
         let f: Vec<&str> = line.split(',').collect();
         assert_eq!(f[0], t);
@@ -260,8 +260,15 @@ fn schedule_measurements_agree_with_the_reference() {
         let i = (g - d) / z.cos();
         let epsilon = reference::sky_clearness(d, i, z);
         let delta = reference::sky_brightness(d, z, day);
-        let [k_global, _, _] = reference::interpolated_efficacies(epsilon, delta, z, 2.0);
+        let [k_global, k_diffuse, k_direct] =
+            reference::interpolated_efficacies(epsilon, delta, z, 2.0);
         let lux = g * k_global;
+        // The split's light: the diffuse and the direct (on the horizontal) through their
+        // own efficacies.
+        let (diffuse_lux, direct_lux) = (d * k_diffuse, i * z.cos() * k_direct);
+        worst_parts = worst_parts
+            .max((num(f[19]) - diffuse_lux).abs() / diffuse_lux)
+            .max((num(f[20]) - direct_lux).abs() / direct_lux.max(1.0));
         worst = worst.max((num(f[7]) - lux).abs() / lux);
         worst = worst.max((num(f[18]) - lux).abs() / lux);
         // The reading and its split (W/m², printed to 1e-4 W/m²).
@@ -282,9 +289,9 @@ fn schedule_measurements_agree_with_the_reference() {
         );
     }
     println!(
-        "schedule --measurements (ghi): illuminance within {worst:.2e} of the reference chain"
+        "schedule --measurements (ghi): illuminance within {worst:.2e} of the reference chain, its diffuse and direct parts within {worst_parts:.2e}"
     );
-    assert!(worst < 1e-4);
+    assert!(worst < 1e-4 && worst_parts < 1e-4);
 }
 
 /// `schedule --measurements` with lux readings equal to the clear-sky schedule's horizontal
