@@ -7,9 +7,8 @@
 //!   ([`crate::decomposition`]);
 //! * a lux reading alone is turned into irradiance by iterating: irradiance = lux / efficacy,
 //!   whose sky condition (from Erbs's split) gives the next efficacy, [`EFFICACY_ITERATIONS`]
-//!   times from a first efficacy of 110 lm/W (the global efficacy depends on the sky, by a few
-//!   per cent, and steps at the sky-clearness bins' edges, so the iteration may settle on
-//!   either side of an edge).
+//!   times from a first efficacy of 110 lm/W (the global efficacy depends on the sky by a few
+//!   per cent, continuously in ε: [`crate::efficacy`]).
 
 use core::f32::consts::FRAC_PI_2;
 
