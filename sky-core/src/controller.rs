@@ -44,24 +44,55 @@ pub fn example_luminaire() -> Result<Luminaire<4>, SkyError> {
     )
 }
 
-/// What a measurement told the controller.
+/// What a measurement told the controller: the reading, its split and its light, and how it
+/// compares with the clear sky.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Weather {
     /// The Perez sky-clearness bin, 1 (overcast) to 8 (clear); 0 with the sun below the horizon.
     pub sky_type: u8,
     /// Sky clearness ε and brightness Δ, with the sun above the horizon.
     pub condition: Option<SkyCondition>,
-    /// Global horizontal irradiance, W/m² (measured, or the illuminance over Perez's global
-    /// efficacy).
+    /// Global horizontal irradiance, W/m² (measured, thermal offsets counted as 0; or the
+    /// illuminance over Perez's global efficacy).
     pub global_irradiance: f32,
+    /// Diffuse horizontal irradiance, W/m²: the measured diffuse where there is one, else
+    /// Erbs's split of the global ([`crate::measurement`]).
+    pub diffuse_irradiance: f32,
+    /// Direct normal irradiance, W/m², of that split (0 with the sun more than 87° from the
+    /// zenith).
+    pub direct_normal_irradiance: f32,
+    /// Global horizontal illuminance, lx: the measured one, or the global irradiance through
+    /// Perez's global efficacy.
+    pub global_illuminance: f32,
+    /// Diffuse horizontal illuminance, lx: the diffuse irradiance through Perez's diffuse
+    /// efficacy.
+    pub diffuse_illuminance: f32,
+    /// Direct illuminance on the horizontal plane, lx: the direct normal irradiance times
+    /// cos Z through Perez's direct efficacy. The three efficacies are separate fits, so the
+    /// diffuse and direct illuminances add up to the global only within their errors.
+    pub direct_illuminance: f32,
     /// The clear sky's horizontal illuminance at the same time ([`clear_sky_illuminance`]), XYZ
     /// with Y in lux.
     pub clear_sky: Vec3,
-    /// Measured over clear-sky global illuminance.
-    pub clear_sky_index: f32,
-    /// The overcast fraction of [`crate::overcast`] (0 clear, 1 overcast).
+    /// The measured global illuminance over the clear sky's ([`Weather::clear_sky`]); `None`
+    /// where the clear sky's global illuminance is below [`MIN_CLEAR_SKY_LUX`] (the sun more
+    /// than about 3° below the horizon), where a ratio would only measure the sensor's noise
+    /// over the twilight (a night reading of 0.3 W/m² gave 1.6e8).
+    pub clear_sky_index: Option<f32>,
+    /// The overcast fraction of [`crate::overcast`] (0 clear, 1 overcast) of the ratio
+    /// (E + L) / (E_clear + L), E the measured and E_clear the clear sky's global illuminance,
+    /// L = [`MIN_CLEAR_SKY_LUX`]: the clear-sky index by day (within L / E_clear: under 2.5 % with
+    /// the sun above 5°, 1 % above 10°), 1 for a reading equal to the clear sky, and continuous into the
+    /// night (where it tends to 1: nothing tells the cloud, the light keeps the clear sky's
+    /// colour at the measured level).
     pub overcast_fraction: f32,
 }
+
+/// The clear sky's global horizontal illuminance, lx, below which the clear-sky index is not
+/// defined ([`Weather::clear_sky_index`]): 100 lx, about 1 W/m², the order of a pyranometer's
+/// thermal offset, and reached by the default clear sky with the sun about 3° below the
+/// horizon (2.8° at Vienna at the equinox).
+pub const MIN_CLEAR_SKY_LUX: f32 = 100.0;
 
 /// Which daylight the luminaire follows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -167,7 +198,7 @@ pub fn clear_sky_illuminance(sun: &SunPosition, aod: f32) -> Result<Vec3, SkyErr
 /// let dull = step(&time, &vienna, &settings, &lamp, Some(Measurement::GlobalIlluminance(4_000.0)))?;
 /// let weather = dull.weather.expect("measured");
 /// assert_eq!(dull.illuminance.y, 4_000.0);           // the measured illuminance
-/// assert!(weather.clear_sky_index < 0.3 && weather.overcast_fraction == 1.0);
+/// assert!(weather.clear_sky_index.expect("by day") < 0.3 && weather.overcast_fraction == 1.0);
 /// assert!(weather.sky_type <= 2);                    // overcast in Perez's bins
 /// # Ok::<(), sky_core::SkyError>(())
 /// ```
@@ -203,14 +234,23 @@ pub fn step(
     let (illuminance, melanopic_edi, weather) = match measurement {
         None => (followed, followed_melanopic, None),
         Some(m) => {
-            let reading = m.read(sun.sun().zenith(), time.day_of_year())?;
-            // The clear sky is positive at every elevation (the night holds -18 deg's light).
-            let index = (reading.global_illuminance / clear.y.max(f32::MIN_POSITIVE)).min(f32::MAX);
-            let w = overcast::overcast_fraction(index);
+            let zenith = sun.sun().zenith();
+            let reading = m.read(zenith, time.day_of_year())?;
+            let lux = reading.global_illuminance;
+            let index = (clear.y >= MIN_CLEAR_SKY_LUX).then(|| (lux / clear.y).min(f32::MAX));
+            // The colour's ratio, continuous at night and 1 for a reading equal to the clear sky.
+            let colour_index =
+                ((lux + MIN_CLEAR_SKY_LUX) / (clear.y + MIN_CLEAR_SKY_LUX)).min(f32::MAX);
+            let w = overcast::overcast_fraction(colour_index);
             let weather = Weather {
                 sky_type: reading.condition.map_or(0, |c| c.bin()),
                 condition: reading.condition,
                 global_irradiance: reading.global_irradiance,
+                diffuse_irradiance: reading.diffuse_irradiance,
+                direct_normal_irradiance: reading.direct_normal_irradiance,
+                global_illuminance: reading.global_illuminance,
+                diffuse_illuminance: reading.diffuse_illuminance(zenith),
+                direct_illuminance: reading.direct_illuminance(zenith),
                 clear_sky: clear,
                 clear_sky_index: index,
                 overcast_fraction: w,

@@ -7,9 +7,8 @@
 //!   ([`crate::decomposition`]);
 //! * a lux reading alone is turned into irradiance by iterating: irradiance = lux / efficacy,
 //!   whose sky condition (from Erbs's split) gives the next efficacy, [`EFFICACY_ITERATIONS`]
-//!   times from a first efficacy of 110 lm/W (the global efficacy depends on the sky, by a few
-//!   per cent, and steps at the sky-clearness bins' edges, so the iteration may settle on
-//!   either side of an edge).
+//!   times from a first efficacy of 110 lm/W (the global efficacy depends on the sky by a few
+//!   per cent, continuously in ε: [`crate::efficacy`]).
 
 use core::f32::consts::FRAC_PI_2;
 
@@ -22,13 +21,29 @@ use crate::solar;
 
 /// An outdoor measurement of daylight on a horizontal plane.
 ///
-/// **Bad readings**: NaN or infinite values are [`SkyError::NotFinite`]; negative values (a
-/// sensor's dark offset) count as 0; a diffuse above the global is [`SkyError::OutOfRange`]
-/// naming the diffuse; a global above [`MAX_CLEARNESS_INDEX`] times the extraterrestrial
-/// horizontal irradiance (cos Z taken as at least [`MIN_COS_ZENITH`], so the bound stays above
-/// 129 W/m² or about 14 klx at night) is [`SkyError::OutOfRange`] naming the reading. With the sun
-/// below the horizon a reading is used as it is: there is no sky type, and W/m² become lux with
-/// the efficacy of the sun on the horizon.
+/// **Readings as stations deliver them** (one rule for every reading, the same for the CLI's
+/// `sample --model perez` and `schedule --measurements`):
+///
+/// * NaN or infinite values are [`SkyError::NotFinite`];
+/// * a negative value down to [`THERMAL_OFFSET_LIMIT`] W/m² (a pyranometer's thermal offset,
+///   −1.8 to −7.7 W/m² at night in SURFRAD and MIDC files) or [`THERMAL_OFFSET_LIMIT_LUX`] lx
+///   counts as 0; a value below it is [`SkyError::OutOfRange`] naming the reading (a sensor
+///   fault, not an offset); values below `f32::MIN_POSITIVE` (subnormal) count as 0 too;
+/// * a diffuse above the global by at most [`DIFFUSE_EXCESS_TOLERANCE`] W/m² or
+///   [`DIFFUSE_EXCESS_FRACTION`] of the global, whichever is larger (two sensors' offsets and
+///   cosine errors near the horizon: up to 5.9 W/m², at zenith 89.3°, in NOAA SURFRAD's
+///   Alamosa record of 1 January 2016), counts as equal to the global; above that it is
+///   [`SkyError::OutOfRange`] naming the diffuse;
+/// * a diffuse of 0 with a global above 0 is used as an all-diffuse reading when the sun is down
+///   or the global is at most [`THERMAL_OFFSET_LIMIT`] (a shaded sensor's offset at night and
+///   dawn); with the sun up and a larger global it is [`SkyError::OutOfRange`] naming the
+///   diffuse as given (a sun without a sky is a shading or wiring fault);
+/// * a global above [`MAX_CLEARNESS_INDEX`] times the extraterrestrial horizontal irradiance
+///   (cos Z taken as at least [`MIN_COS_ZENITH`], so the bound stays above 129 W/m² or about
+///   14 klx at night) is [`SkyError::OutOfRange`] naming the reading.
+///
+/// With the sun below the horizon a reading is used as it is (night readings are not refused):
+/// there is no sky type, and W/m² become lux with the efficacy of the sun on the horizon.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Measurement {
     /// Global horizontal illuminance from a lux sensor, lx.
@@ -77,6 +92,23 @@ impl Reading {
     }
 }
 
+impl Reading {
+    /// The direct illuminance on the horizontal plane, lx: the direct normal irradiance times
+    /// cos Z times Perez's direct efficacy (with the sun at zenith angle `sun_zenith`, radians;
+    /// 0 when the sun is down).
+    #[must_use]
+    pub fn direct_illuminance(&self, sun_zenith: f32) -> f32 {
+        match self.condition {
+            Some(c) if sun_zenith <= FRAC_PI_2 => {
+                let z = sun_zenith.max(0.0);
+                let k = Efficacy::new(&c, z, DEFAULT_PRECIPITABLE_WATER).direct;
+                self.direct_normal_irradiance * math::cos(z) * k
+            }
+            _ => 0.0,
+        }
+    }
+}
+
 /// Fixed-point iterations from a global illuminance to the irradiance whose Perez efficacy
 /// gives it back (module docs).
 pub const EFFICACY_ITERATIONS: usize = 8;
@@ -84,12 +116,58 @@ pub const EFFICACY_ITERATIONS: usize = 8;
 /// A first guess of the global efficacy, lm/W.
 const FIRST_EFFICACY: f32 = 110.0;
 
-/// A finite reading, negative values counted as 0.
-fn non_negative(parameter: &'static str, value: f32) -> Result<f32, SkyError> {
-    if value.is_finite() {
-        Ok(value.max(0.0))
-    } else {
+/// The most negative irradiance reading taken for a sensor's thermal offset and counted as 0,
+/// W/m² (as a magnitude: readings down to −10 W/m² count as 0; [`Measurement`]).
+pub const THERMAL_OFFSET_LIMIT: f32 = 10.0;
+
+/// The same for a lux sensor, lx: [`THERMAL_OFFSET_LIMIT`] at the first-guess efficacy of
+/// 110 lm/W, so that both kinds of reading follow one rule.
+pub const THERMAL_OFFSET_LIMIT_LUX: f32 = THERMAL_OFFSET_LIMIT * FIRST_EFFICACY;
+
+/// A diffuse reading above the global by at most this much, W/m², counts as the global
+/// ([`Measurement`]).
+pub const DIFFUSE_EXCESS_TOLERANCE: f32 = THERMAL_OFFSET_LIMIT;
+
+/// A diffuse reading above the global by at most this fraction of the global counts as the
+/// global, when that is more than [`DIFFUSE_EXCESS_TOLERANCE`] ([`Measurement`]).
+pub const DIFFUSE_EXCESS_FRACTION: f32 = 0.05;
+
+/// A finite reading, a thermal offset down to `-offset` (and a subnormal value) counted as 0.
+fn non_negative(parameter: &'static str, value: f32, offset: f32) -> Result<f32, SkyError> {
+    if !value.is_finite() {
         Err(SkyError::NotFinite { parameter })
+    } else if value < -offset {
+        Err(SkyError::OutOfRange {
+            parameter,
+            value,
+            min: -offset,
+            max: f32::MAX,
+        })
+    } else if value < f32::MIN_POSITIVE {
+        Ok(0.0)
+    } else {
+        Ok(value)
+    }
+}
+
+/// The diffuse reading `diffuse` (its thermal offset already counted as 0) with a global
+/// `global`: at most the global, within the tolerance of [`Measurement`].
+///
+/// # Errors
+/// [`SkyError::OutOfRange`] naming the diffuse, `given` being the value as read.
+pub fn diffuse_within_global(diffuse: f32, global: f32, given: f32) -> Result<f32, SkyError> {
+    let tolerance = DIFFUSE_EXCESS_TOLERANCE.max(DIFFUSE_EXCESS_FRACTION * global);
+    if diffuse <= global {
+        Ok(diffuse)
+    } else if diffuse <= global + tolerance {
+        Ok(global)
+    } else {
+        Err(SkyError::OutOfRange {
+            parameter: "diffuse irradiance [W/m²]",
+            value: given,
+            min: 0.0,
+            max: global + tolerance,
+        })
     }
 }
 
@@ -135,26 +213,30 @@ impl Measurement {
         };
         let (lux, global, diffuse, direct, c) = match self {
             Self::GlobalIrradiance(g) => {
-                let g = non_negative("global irradiance [W/m²]", g)?;
+                let g = non_negative("global irradiance [W/m²]", g, THERMAL_OFFSET_LIMIT)?;
                 let (d, i) = split(g)?;
                 let c = condition(d, i)?;
                 (g * efficacy(&c), g, d, i, c)
             }
             Self::Irradiance { global, diffuse } => {
-                let g = non_negative("global irradiance [W/m²]", global)?;
-                let d = non_negative("diffuse irradiance [W/m²]", diffuse)?;
+                let g = non_negative("global irradiance [W/m²]", global, THERMAL_OFFSET_LIMIT)?;
+                let d = non_negative("diffuse irradiance [W/m²]", diffuse, THERMAL_OFFSET_LIMIT)?;
                 check_range("global irradiance [W/m²]", g, 0.0, limit)?;
-                check_range("diffuse irradiance [W/m²]", d, 0.0, g)?;
+                let mut d = diffuse_within_global(d, g, diffuse)?;
                 if d == 0.0 && g > 0.0 {
-                    return Err(SkyError::OutOfRange {
-                        parameter: "diffuse irradiance [W/m²]",
-                        value: d,
-                        min: f32::MIN_POSITIVE,
-                        max: g,
-                    });
+                    if up && g > THERMAL_OFFSET_LIMIT {
+                        return Err(SkyError::OutOfRange {
+                            parameter: "diffuse irradiance [W/m²]",
+                            value: diffuse,
+                            min: f32::MIN_POSITIVE,
+                            max: g,
+                        });
+                    }
+                    // A shaded sensor's offset at night or dawn: all of it diffuse.
+                    d = g;
                 }
                 let i = if up && z <= MAX_BEAM_ZENITH {
-                    (g - d) / math::cos(z)
+                    ((g - d) / math::cos(z)).max(0.0)
                 } else {
                     0.0
                 };
@@ -162,7 +244,7 @@ impl Measurement {
                 (g * efficacy(&c), g, d, i, c)
             }
             Self::GlobalIlluminance(lux) => {
-                let lux = non_negative("global illuminance [lx]", lux)?;
+                let lux = non_negative("global illuminance [lx]", lux, THERMAL_OFFSET_LIMIT_LUX)?;
                 let mut k = FIRST_EFFICACY;
                 let (mut g, mut d, mut i) = (lux / k, lux / k, 0.0);
                 let mut c = condition(d, i)?;

@@ -65,6 +65,13 @@ pub(crate) fn describe(
                 "" => (value, min, max, String::new()),
                 other => (value, min, max, format!(" {other}")),
             };
+            if max >= f32::MAX && value < min {
+                // No upper end worth printing (sky-core's "at least min").
+                return format!(
+                    "{}{separator}{value}{unit} is below the lowest valid value {min}{unit}",
+                    name(base)
+                );
+            }
             let (low, high) = (
                 if open_min { "(" } else { "[" },
                 if open_max { ")" } else { "]" },

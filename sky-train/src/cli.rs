@@ -66,18 +66,21 @@ pub enum Command {
     LocusTable(LocusTableArgs),
     /// A lighting controller's day: every --step minutes of a UTC date, the sun's position
     /// (NREL SPA), the clear sky's CCT, Duv and horizontal illuminance, and the levels of an
-    /// example RGBW luminaire, as CSV on stdout.
+    /// example RGBW luminaire, as CSV on stdout; or, with --measurements, one row per reading
+    /// of an outdoor sensor (its columns under --measurements).
     ///
     /// Columns: utc (RFC 3339); sun_zenith_deg: the topocentric GEOMETRIC zenith angle (no
     /// refraction; the sky models use it); sun_azimuth_deg: from north, clockwise, east = 90;
     /// sun_elevation_deg = 90 - zenith; apparent_zenith_deg: refraction-corrected for 1013.25 hPa
     /// and 15 C; cct_k and duv (CIE 1960 uv distance from the Planckian locus, positive above
-    /// it as in ANSI C78.377) of the horizontal illuminance; horizontal_lux: from the sky
-    /// alone (no direct sun, no ground), Preetham's model by day and a fitted twilight decay
-    /// below the horizon; red, green, blue, white: levels in [0, 1] of an RGBW luminaire (red
-    /// 300 lm at x,y 0.700,0.295; green 600 lm at 0.170,0.700; blue 100 lm at 0.135,0.060;
-    /// white 900 lm at 0.4369,0.4041) reproducing that colour, at full output at
-    /// --full-scale-lux.
+    /// it as in ANSI C78.377; empty where |Duv| > 0.05) of the light followed; horizontal_lux:
+    /// the light followed on a horizontal plane, the clear sky's global light of sun and sky
+    /// (the physical daylight distilled into sky-core's tables, twilight included), or the sky
+    /// alone with --sky-only; red, green, blue, white: levels in [0, 1] of an RGBW luminaire
+    /// (red 300 lm at x,y 0.700,0.295; green 600 lm at 0.170,0.700; blue 100 lm at
+    /// 0.135,0.060; white 900 lm at 0.4369,0.4041) reproducing that colour, at full output at
+    /// --full-scale-lux; global_lux, diffuse_lux, direct_lux: the clear sky's; x, y and
+    /// melanopic_edi_lux: of the light followed.
     Schedule(ScheduleArgs),
     /// Captured skies (seed 000 §III-D, §IV-A, §IV-B): train a neural sky on a sequence of
     /// HDR environment maps, fill the gaps between them, synthesize test sequences.

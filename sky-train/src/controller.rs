@@ -36,16 +36,55 @@ pub struct ScheduleConfig {
 /// The CSV header of `schedule`.
 ///
 /// `horizontal_lux`, `x`, `y`, `cct_k`, `duv` and `melanopic_edi_lux` are of the light followed
-/// (global, or the sky alone; under cloud with measurements), `cct_k` and `duv` empty where
-/// |Duv| > 0.05; `global_lux`, `diffuse_lux` and `direct_lux` are the clear-sky daylight's.
+/// (global, or the sky alone), `cct_k` and `duv` empty where |Duv| > 0.05; `global_lux`,
+/// `diffuse_lux` and `direct_lux` are the clear-sky daylight's. With measurements the header is
+/// [`MEASURED_HEADER`].
 pub const SCHEDULE_HEADER: &str = "utc,sun_zenith_deg,sun_azimuth_deg,sun_elevation_deg,apparent_zenith_deg,cct_k,duv,horizontal_lux,red,green,blue,white,global_lux,diffuse_lux,direct_lux,x,y,melanopic_edi_lux";
 
-/// The columns `schedule --measurements` adds to [`SCHEDULE_HEADER`].
-pub const MEASURED_COLUMNS: &str = "sky_type,clear_sky_index";
+/// The columns of `schedule --measurements` after the sun's and the light followed's
+/// ([`MEASURED_HEADER`]).
+pub const MEASURED_COLUMNS: &str = "ghi_wm2,dhi_wm2,dni_wm2,global_lux,diffuse_lux,direct_lux,clear_global_lux,clear_sky_index,sky_type";
 
-/// One row of a measurement file: its UTC time and reading.
+/// The CSV header of `schedule --measurements`. `horizontal_lux`, `x`, `y`, `cct_k`, `duv`,
+/// `melanopic_edi_lux` and the RGBW levels are of the light followed (the measured global or
+/// diffuse light with its colour under cloud); `ghi_wm2` the reading (or a lux reading over
+/// Perez's global efficacy), `dhi_wm2` the file's diffuse where it has one and else Erbs's
+/// split, `dni_wm2` the direct normal of that split; `global_lux`, `diffuse_lux` and
+/// `direct_lux` (on the horizontal plane) the measured light through Perez's efficacies;
+/// `clear_global_lux` the clear sky's global illuminance, `clear_sky_index` the ratio
+/// `global_lux / clear_global_lux`, empty where the clear sky is below
+/// `sky_core::controller::MIN_CLEAR_SKY_LUX` (100 lx); `sky_type` the Perez sky-clearness bin
+/// (1-8, 0 with the sun below the horizon).
+pub const MEASURED_HEADER: &str = "utc,sun_zenith_deg,sun_azimuth_deg,sun_elevation_deg,apparent_zenith_deg,cct_k,duv,horizontal_lux,red,green,blue,white,x,y,melanopic_edi_lux,ghi_wm2,dhi_wm2,dni_wm2,global_lux,diffuse_lux,direct_lux,clear_global_lux,clear_sky_index,sky_type";
+
+/// How a measurement file is laid out.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum MeasurementFormat {
+    /// CSV with a header naming `utc` and `global_lux`, or `ghi_wm2` and optionally `dhi_wm2`
+    /// ([`parse_measurements`]).
+    #[default]
+    Csv,
+    /// A NOAA SURFRAD daily file as the network delivers it: two header lines (station; lat,
+    /// lon, elevation), then fixed-width rows of year, day of year, month, day, hour, minute
+    /// (UTC), decimal time, sun zenith, then value-and-flag pairs, `dw_solar` (GHI) the first,
+    /// `direct_n` the third and `diffuse` the fourth (pvlib's `iotools.read_surfrad` column
+    /// list). A row whose GHI is missing (−9999.9) or flagged bad (flag not 0) is skipped; a
+    /// missing or flagged diffuse leaves the GHI alone (split by Erbs).
+    Surfrad,
+    /// An NREL MIDC raw-data CSV file as the network delivers it: a header with `Year`, `DOY`
+    /// and, after it, the time column named by the station's standard time zone (`EST`, `CST`,
+    /// `MST`, `PST` or `UTC`) holding HHMM; GHI the first column whose name starts with
+    /// `Global` and holds `[W/m^2]` (not a standard deviation), DHI the first starting with
+    /// `Diffuse` likewise. Values of −7999 or less are missing: a row without the GHI is
+    /// skipped, a row without the DHI keeps the GHI alone.
+    Midc,
+}
+
+/// One row of a measurement file: its line, UTC time and reading.
 #[derive(Debug, Clone, Copy)]
 pub struct MeasuredRow {
+    /// The file's 1-based line number of the row.
+    pub line: usize,
     /// The time of the reading.
     pub time: UtcTime,
     /// The same, as Unix time (for the output's RFC 3339).
@@ -58,197 +97,479 @@ pub struct MeasuredRow {
 /// lines of some 40 bytes) fits three times over.
 pub const MAX_MEASUREMENT_BYTES: u64 = 64 << 20;
 
-/// Reads a CSV file of outdoor measurements ([`parse_measurements`]), at most
-/// [`MAX_MEASUREMENT_BYTES`] long.
+/// Reads the measurement file `path` of `format` row by row, at most [`MAX_MEASUREMENT_BYTES`]
+/// long, handing each row to `each` as it is read (memory does not grow with the rows).
 ///
 /// # Errors
-/// A [`ParamError`] naming `--measurements` and the file: it cannot be read, is too long, or
-/// [`parse_measurements`] refuses it.
-pub fn read_measurements(path: &Path) -> Result<Vec<MeasuredRow>, ParamError> {
+/// A [`ParamError`] naming `--measurements` and the file: it is not a regular file, cannot be
+/// read, is too long, or its parser refuses it ([`parse_measurements`]); or `each`'s error.
+pub fn read_measurements(
+    path: &Path,
+    format: MeasurementFormat,
+    each: &mut dyn FnMut(&MeasuredRow) -> Result<()>,
+) -> Result<()> {
     use std::io::Read;
     let source = format!("--measurements {}", path.display());
     let file = std::fs::File::open(path).map_err(|e| ParamError(format!("{source}: {e}")))?;
-    let mut input = std::io::BufReader::new(file.take(MAX_MEASUREMENT_BYTES + 1));
-    let rows = parse_measurements(&mut input, &source)?;
-    if input.get_ref().limit() == 0 {
+    let meta = file
+        .metadata()
+        .map_err(|e| ParamError(format!("{source}: {e}")))?;
+    if !meta.is_file() {
+        let what = if meta.is_dir() {
+            "a directory"
+        } else {
+            "not a regular file"
+        };
         return Err(ParamError(format!(
-            "{source}: longer than {MAX_MEASUREMENT_BYTES} bytes"
-        )));
+            "{source}: is {what}; expected a regular file of measurements"
+        ))
+        .into());
     }
-    Ok(rows)
+    if meta.len() > MAX_MEASUREMENT_BYTES {
+        return Err(ParamError(format!(
+            "{source}: longer than {MAX_MEASUREMENT_BYTES} bytes (64 MiB)"
+        ))
+        .into());
+    }
+    let mut input = std::io::BufReader::new(file.take(MAX_MEASUREMENT_BYTES + 1));
+    let too_long =
+        |input: &std::io::BufReader<std::io::Take<std::fs::File>>| input.get_ref().limit() == 0;
+    let result = parse_measurements(&mut input, &source, format, each);
+    // A file over the limit is named as such, whatever the parser made of its first 64 MiB.
+    if too_long(&input) {
+        return Err(ParamError(format!(
+            "{source}: longer than {MAX_MEASUREMENT_BYTES} bytes (64 MiB)"
+        ))
+        .into());
+    }
+    result
 }
 
-/// Parses outdoor measurements ([`crate::csv_input::lines`]): a header naming the columns `utc`
-/// (RFC 3339) and either `global_lux` or `ghi_wm2` with an optional `dhi_wm2` (in any order,
-/// any case; other columns are ignored), then one reading per line (blank lines and `#`
-/// comments skipped): finite, non-negative, the diffuse part not above the global, the times
-/// strictly increasing.
+/// The thermal-offset and range rule is sky-core's ([`sky_core::measurement::Measurement`]);
+/// a field must at least be a finite number.
+fn field_number(text: &str) -> Option<f32> {
+    text.parse::<f32>().ok().filter(|x| x.is_finite())
+}
+
+/// Parses outdoor measurements of `format` ([`MeasurementFormat`]; [`crate::csv_input::lines`]
+/// for the line rules) and hands each row to `each`. For [`MeasurementFormat::Csv`]: a header
+/// naming the columns `utc` (RFC 3339) and either `global_lux` or `ghi_wm2` with an optional
+/// `dhi_wm2` (in any order, any case, each once; other columns are ignored), then one reading
+/// per line (blank lines and `#` comments skipped): finite numbers, the times strictly
+/// increasing. Thermal offsets, a diffuse slightly above the global and night readings are
+/// sky-core's rules ([`sky_core::measurement::Measurement`]), applied by the step.
 ///
 /// # Errors
 /// A one-line [`ParamError`] starting with `source` and naming the line and the column for a
-/// missing or ambiguous column, a bad time, a field that is not a number or out of range, or a
-/// time not after the one before; none for a file without rows.
+/// missing, repeated or ambiguous column, a bad time, a field that is not a number, or a time
+/// not after the one before; none for a file without rows.
 pub fn parse_measurements(
     input: &mut dyn std::io::BufRead,
     source: &str,
-) -> Result<Vec<MeasuredRow>, ParamError> {
-    use crate::csv_input::shown;
+    format: MeasurementFormat,
+    each: &mut dyn FnMut(&MeasuredRow) -> Result<()>,
+) -> Result<()> {
     let mut lines = crate::csv_input::lines(input, source);
     let mut next = || loop {
         match lines.next_line() {
-            Some(Ok(l)) if l.starts_with('#') => {}
+            Some(Ok(l)) if l.starts_with('#') && format == MeasurementFormat::Csv => {}
             other => return other.transpose().map(|l| l.map(|l| (lines.line(), l))),
         }
     };
     let Some((header_line, header)) = next()? else {
-        return Err(ParamError(format!("{source}: the file is empty")));
+        return Err(ParamError(format!("{source}: the file is empty (no header line)")).into());
     };
-    let columns: Vec<String> = header
-        .split(',')
-        .map(|c| c.trim().to_ascii_lowercase())
-        .collect();
-    let find = |c: &str| columns.iter().position(|h| h == c);
-    let missing = || {
-        ParamError(format!(
-            "{source} line {header_line}: the header `{}` needs the columns utc and global_lux, or utc and ghi_wm2 (with dhi_wm2 optionally)",
-            shown(&header)
-        ))
+    let layout = match format {
+        MeasurementFormat::Csv => Layout::csv(source, header_line, &header)?,
+        MeasurementFormat::Midc => Layout::midc(source, header_line, &header)?,
+        MeasurementFormat::Surfrad => {
+            // The station's name, then its latitude, longitude and elevation.
+            if next()?.is_none() {
+                return Err(ParamError(format!(
+                    "{source}: a SURFRAD file has two header lines (station; latitude, longitude, elevation)"
+                ))
+                .into());
+            }
+            Layout::Surfrad
+        }
     };
-    let utc = find("utc").ok_or_else(missing)?;
-    let (lux, ghi, dhi) = (find("global_lux"), find("ghi_wm2"), find("dhi_wm2"));
-    if lux.is_some() && (ghi.is_some() || dhi.is_some()) || (lux.is_none() && ghi.is_none()) {
-        return Err(missing());
-    }
-    let mut rows: Vec<MeasuredRow> = Vec::new();
     let mut previous: Option<(usize, f64)> = None;
     while let Some((n, line)) = next()? {
         let error = |what: String| ParamError(format!("{source} line {n}: {what}"));
-        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-        let at = |i: usize, column: &str| {
-            fields
-                .get(i)
-                .copied()
-                .ok_or_else(|| error(format!("no {column} field")))
+        let Some((unix, measurement)) = layout.row(&line, &error)? else {
+            continue;
         };
-        let number = |i: usize, column: &str| -> Result<f32, ParamError> {
-            let v = at(i, column)?;
-            match v.parse::<f32>() {
-                Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
-                _ => Err(error(format!(
-                    "{column} `{}`: expected a finite number, at least 0",
-                    shown(v)
-                ))),
-            }
-        };
-        let text = at(utc, "utc")?;
-        let unix = UnixTime::parse(text).map_err(|e| error(format!("utc: {e:#}")))?;
         if let Some((line, t)) = previous
             && unix.0 <= t
         {
             return Err(error(format!(
                 "utc {}: not after the time on line {line} (the rows must be in time order, each time once)",
-                shown(text)
-            )));
+                unix.rfc3339()
+            ))
+            .into());
         }
         previous = Some((n, unix.0));
         let (y, mo, d, h, mi, sec) = unix.to_civil();
         let time = UtcTime::new(y, mo, d, h, mi, sec).map_err(|e| error(format!("utc: {e}")))?;
-        let measurement = match (lux, ghi, dhi) {
-            (Some(i), _, _) => Measurement::GlobalIlluminance(number(i, "global_lux")?),
-            (None, Some(g), Some(d)) => {
-                let (global, diffuse) = (number(g, "ghi_wm2")?, number(d, "dhi_wm2")?);
-                if diffuse > global {
-                    return Err(error(format!(
-                        "dhi_wm2 {diffuse} is above ghi_wm2 {global} (the diffuse part of the global irradiance)"
-                    )));
-                }
-                Measurement::Irradiance { global, diffuse }
-            }
-            (None, Some(g), None) => Measurement::GlobalIrradiance(number(g, "ghi_wm2")?),
-            (None, None, _) => return Err(missing()),
-        };
-        rows.push(MeasuredRow {
+        each(&MeasuredRow {
+            line: n,
             time,
             unix,
             measurement,
-        });
+        })?;
     }
-    Ok(rows)
+    Ok(())
+}
+
+/// Where a file's fields are.
+enum Layout {
+    /// `utc` and `global_lux`, or `ghi_wm2` and optionally `dhi_wm2`, by column index.
+    Csv {
+        utc: usize,
+        lux: Option<usize>,
+        ghi: Option<usize>,
+        dhi: Option<usize>,
+    },
+    /// Year, day of year, HHMM local standard time `offset_hours` behind UTC, GHI, DHI.
+    Midc {
+        year: usize,
+        doy: usize,
+        hhmm: usize,
+        offset_hours: u32,
+        ghi: usize,
+        dhi: Option<usize>,
+    },
+    /// Fixed columns (see [`MeasurementFormat::Surfrad`]).
+    Surfrad,
+}
+
+/// A MIDC value at or below this is missing.
+const MIDC_MISSING: f32 = -7999.0;
+
+/// A SURFRAD value at or below this is missing (they are written −9999.9).
+const SURFRAD_MISSING: f32 = -9999.0;
+
+impl Layout {
+    fn csv(source: &str, header_line: usize, header: &str) -> Result<Self, ParamError> {
+        use crate::csv_input::shown;
+        let columns: Vec<String> = header
+            .split(',')
+            .map(|c| c.trim().to_ascii_lowercase())
+            .collect();
+        for (i, c) in columns.iter().enumerate() {
+            let known = ["utc", "global_lux", "ghi_wm2", "dhi_wm2"].contains(&c.as_str());
+            if known && columns[..i].contains(c) {
+                return Err(ParamError(format!(
+                    "{source} line {header_line}: the header `{}` names the column {c} twice (columns {} and {})",
+                    shown(header),
+                    columns[..i].iter().position(|h| h == c).unwrap_or(0) + 1,
+                    i + 1
+                )));
+            }
+        }
+        let find = |c: &str| columns.iter().position(|h| h == c);
+        let missing = || {
+            ParamError(format!(
+                "{source} line {header_line}: the header `{}` needs the columns utc and global_lux, or utc and ghi_wm2 (with dhi_wm2 optionally)",
+                shown(header)
+            ))
+        };
+        let utc = find("utc").ok_or_else(missing)?;
+        let (lux, ghi, dhi) = (find("global_lux"), find("ghi_wm2"), find("dhi_wm2"));
+        if lux.is_some() && (ghi.is_some() || dhi.is_some()) || (lux.is_none() && ghi.is_none()) {
+            return Err(missing());
+        }
+        Ok(Self::Csv { utc, lux, ghi, dhi })
+    }
+
+    fn midc(source: &str, header_line: usize, header: &str) -> Result<Self, ParamError> {
+        use crate::csv_input::shown;
+        let columns: Vec<String> = header
+            .split(',')
+            .map(|c| c.trim().to_ascii_lowercase())
+            .collect();
+        let bad = |what: &str| {
+            ParamError(format!(
+                "{source} line {header_line}: the MIDC header `{}` {what}",
+                shown(header)
+            ))
+        };
+        let find = |c: &str| columns.iter().position(|h| h == c);
+        let year = find("year").ok_or_else(|| bad("has no Year column"))?;
+        let doy = find("doy").ok_or_else(|| bad("has no DOY column"))?;
+        let hhmm = doy + 1;
+        let offset_hours = match columns.get(hhmm).map(String::as_str) {
+            Some("utc" | "gmt" | "ut") => 0,
+            Some("est") => 5,
+            Some("cst") => 6,
+            Some("mst") => 7,
+            Some("pst") => 8,
+            _ => {
+                return Err(bad(
+                    "has no time column after DOY named EST, CST, MST, PST or UTC",
+                ));
+            }
+        };
+        let irradiance = |start: &str| {
+            columns
+                .iter()
+                .position(|c| c.starts_with(start) && c.contains("[w/m^2]") && !c.contains("stdev"))
+        };
+        let ghi = irradiance("global")
+            .ok_or_else(|| bad("has no column starting with `Global` in [W/m^2]"))?;
+        Ok(Self::Midc {
+            year,
+            doy,
+            hhmm,
+            offset_hours,
+            ghi,
+            dhi: irradiance("diffuse"),
+        })
+    }
+
+    /// The time and reading of one data line; `None` for a row without a reading (a missing or
+    /// flagged GHI in the stations' formats).
+    fn row(
+        &self,
+        line: &str,
+        error: &dyn Fn(String) -> ParamError,
+    ) -> Result<Option<(UnixTime, Measurement)>, ParamError> {
+        use crate::csv_input::shown;
+        let reading = |global: f32, diffuse: Option<f32>| match diffuse {
+            Some(diffuse) => Measurement::Irradiance { global, diffuse },
+            None => Measurement::GlobalIrradiance(global),
+        };
+        match *self {
+            Self::Csv { utc, lux, ghi, dhi } => {
+                let fields: Vec<&str> = line.split(',').map(str::trim).collect();
+                let at = |i: usize, column: &str| {
+                    fields
+                        .get(i)
+                        .copied()
+                        .ok_or_else(|| error(format!("no {column} field")))
+                };
+                let number = |i: usize, column: &str| -> Result<f32, ParamError> {
+                    let v = at(i, column)?;
+                    field_number(v).ok_or_else(|| {
+                        error(format!("{column} `{}`: expected a finite number", shown(v)))
+                    })
+                };
+                let text = at(utc, "utc")?;
+                let unix = UnixTime::parse(text).map_err(|e| error(format!("utc: {e:#}")))?;
+                let measurement = match (lux, ghi) {
+                    (Some(i), _) => Measurement::GlobalIlluminance(number(i, "global_lux")?),
+                    (None, Some(g)) => reading(
+                        number(g, "ghi_wm2")?,
+                        dhi.map(|d| number(d, "dhi_wm2")).transpose()?,
+                    ),
+                    (None, None) => return Err(error("no ghi_wm2 or global_lux column".into())),
+                };
+                Ok(Some((unix, measurement)))
+            }
+            Self::Midc {
+                year,
+                doy,
+                hhmm,
+                offset_hours,
+                ghi,
+                dhi,
+            } => {
+                let fields: Vec<&str> = line.split(',').map(str::trim).collect();
+                let int = |i: usize, column: &str, max: u32| -> Result<u32, ParamError> {
+                    let v = fields.get(i).copied().unwrap_or("");
+                    v.parse::<u32>().ok().filter(|&x| x <= max).ok_or_else(|| {
+                        error(format!(
+                            "{column} `{}`: expected an integer up to {max}",
+                            shown(v)
+                        ))
+                    })
+                };
+                let number = |i: usize, column: &str| -> Result<Option<f32>, ParamError> {
+                    let v = fields.get(i).copied().unwrap_or("");
+                    let x = field_number(v).ok_or_else(|| {
+                        error(format!("{column} `{}`: expected a finite number", shown(v)))
+                    })?;
+                    Ok((x > MIDC_MISSING).then_some(x))
+                };
+                let y = int(year, "Year", 2999)?;
+                let day = int(doy, "DOY", 366)?;
+                let t = int(hhmm, "the time (HHMM)", 2359)?;
+                if y < 1 || day < 1 || t % 100 > 59 {
+                    return Err(error(format!(
+                        "Year {y}, DOY {day}, time {t:04}: not a time (years 1-2999, DOY 1-366, HHMM)"
+                    )));
+                }
+                let Some(g) = number(ghi, "the global irradiance")? else {
+                    return Ok(None);
+                };
+                let d = match dhi {
+                    Some(i) => number(i, "the diffuse irradiance")?,
+                    None => None,
+                };
+                #[allow(clippy::cast_possible_wrap)] // y <= 2999
+                let start = UnixTime::from_civil(y as i32, 1, 1, 0, 0, 0.0).0;
+                let unix = UnixTime(
+                    start
+                        + f64::from(day - 1) * 86_400.0
+                        + f64::from((t / 100 + offset_hours) * 3600 + (t % 100) * 60),
+                );
+                Ok(Some((unix, reading(g, d))))
+            }
+            Self::Surfrad => {
+                let fields: Vec<&str> = line.split_whitespace().collect();
+                if fields.len() < 16 {
+                    return Err(error(format!(
+                        "`{}`: a SURFRAD row has at least 16 fields (time, zenith, GHI, upwelling, DNI and diffuse with their flags), got {}",
+                        shown(line),
+                        fields.len()
+                    )));
+                }
+                let int = |i: usize, column: &str| -> Result<u32, ParamError> {
+                    fields[i].parse::<u32>().map_err(|_| {
+                        error(format!(
+                            "{column} `{}`: expected an integer",
+                            shown(fields[i])
+                        ))
+                    })
+                };
+                let value = |i: usize, column: &str| -> Result<Option<f32>, ParamError> {
+                    let x = field_number(fields[i]).ok_or_else(|| {
+                        error(format!(
+                            "{column} `{}`: expected a finite number",
+                            shown(fields[i])
+                        ))
+                    })?;
+                    let flag = int(i + 1, &format!("{column}_flag"))?;
+                    Ok((x > SURFRAD_MISSING && flag == 0).then_some(x))
+                };
+                let (y, mo, d) = (int(0, "year")?, int(2, "month")?, int(3, "day")?);
+                let (h, mi) = (int(4, "hour")?, int(5, "minute")?);
+                let time = format!("{y:04}-{mo:02}-{d:02}T{h:02}:{mi:02}:00Z");
+                let unix = UnixTime::parse(&time).map_err(|e| error(format!("the time: {e:#}")))?;
+                let Some(g) = value(8, "dw_solar")? else {
+                    return Ok(None);
+                };
+                Ok(Some((unix, reading(g, value(14, "diffuse")?))))
+            }
+        }
+    }
 }
 
 /// The fields of one schedule row after its time ([`SCHEDULE_HEADER`]), each number by
 /// [`crate::csv_output::number`].
 fn row_fields(s: &Step) -> String {
-    let (sun, e, levels, d) = (s.sun, s.illuminance, s.drive.levels, s.daylight);
-    let (x, y) = sky_core::daylight::chromaticity(e);
-    let f = |v: f32| Some(f64::from(v));
+    let (e, d) = (s.illuminance, s.daylight);
     [
-        Some(sun.zenith_deg()),
-        Some(sun.azimuth_deg()),
-        Some(sun.elevation_deg()),
-        Some(sun.apparent_zenith_deg()),
-        s.cct.and_then(|c| f(c.kelvin)),
-        s.cct.and_then(|c| f(c.duv)),
-        f(e.y),
-        f(levels[0]),
-        f(levels[1]),
-        f(levels[2]),
-        f(levels[3]),
-        f(d.global().y),
-        f(d.diffuse().y),
-        f(d.direct().y),
-        f(x),
-        f(y),
-        f(s.melanopic_edi),
+        light_fields(s),
+        number(d.global().y),
+        number(d.diffuse().y),
+        number(d.direct().y),
+        chromaticity_fields(e),
+        number(s.melanopic_edi),
     ]
-    .map(|v| v.map_or_else(String::new, crate::csv_output::number))
     .join(",")
 }
 
-/// Writes the schedule at the times of `rows` (from [`read_measurements`]) driven by their
-/// readings: the columns of [`SCHEDULE_HEADER`] and [`MEASURED_COLUMNS`] (`sky_type`, the Perez
-/// sky-clearness bin 1-8, 0 with the sun below the horizon; `clear_sky_index`, measured over the
-/// clear sky's global horizontal illuminance). Every row is computed before anything is written.
+/// An f32 as a CSV field, by [`crate::csv_output::number`]'s rule.
+fn number(v: f32) -> String {
+    crate::csv_output::number(f64::from(v))
+}
+
+/// The sun's columns, CCT, Duv, the followed light's illuminance and the RGBW levels.
+fn light_fields(s: &Step) -> String {
+    let (sun, e, levels) = (s.sun, s.illuminance, s.drive.levels);
+    let f = |v: Option<f32>| v.map_or_else(String::new, number);
+    [
+        crate::csv_output::number(sun.zenith_deg()),
+        crate::csv_output::number(sun.azimuth_deg()),
+        crate::csv_output::number(sun.elevation_deg()),
+        crate::csv_output::number(sun.apparent_zenith_deg()),
+        f(s.cct.map(|c| c.kelvin)),
+        f(s.cct.map(|c| c.duv)),
+        number(e.y),
+        number(levels[0]),
+        number(levels[1]),
+        number(levels[2]),
+        number(levels[3]),
+    ]
+    .join(",")
+}
+
+fn chromaticity_fields(e: sky_core::Vec3) -> String {
+    let (x, y) = sky_core::daylight::chromaticity(e);
+    [number(x), number(y)].join(",")
+}
+
+/// The fields of one measured row after its time ([`MEASURED_HEADER`]).
+fn measured_fields(s: &Step) -> String {
+    let Some(w) = s.weather else {
+        return String::new();
+    };
+    [
+        light_fields(s),
+        chromaticity_fields(s.illuminance),
+        number(s.melanopic_edi),
+        number(w.global_irradiance),
+        number(w.diffuse_irradiance),
+        number(w.direct_normal_irradiance),
+        number(w.global_illuminance),
+        number(w.diffuse_illuminance),
+        number(w.direct_illuminance),
+        number(w.clear_sky.y),
+        w.clear_sky_index.map_or_else(String::new, number),
+        w.sky_type.to_string(),
+    ]
+    .join(",")
+}
+
+/// Writes the schedule at the times of the measurement file `file` ([`read_measurements`])
+/// driven by its readings: the columns of [`MEASURED_HEADER`]. The file is read twice, a row
+/// at a time: first every row is checked (parsed and stepped), then the rows are written, so
+/// that a bad row is refused before anything is written and memory stays flat in the number
+/// of rows.
 ///
 /// # Errors
 /// Bad parameters or a bad reading as a [`ParamError`] naming the file's line.
 pub fn schedule_measured(
     config: &ScheduleConfig,
-    rows: &[MeasuredRow],
     file: &Path,
+    format: MeasurementFormat,
     output: &mut dyn Write,
 ) -> Result<()> {
     let site = Site::new(config.latitude, config.longitude, config.elevation)
         .map_err(|e| ParamError(format!("--lat/--lon/--elevation: {e}")))?;
     let lamp = example_luminaire()?;
-    let mut lines = Vec::with_capacity(rows.len());
-    for (i, r) in rows.iter().enumerate() {
-        let s =
-            step(&r.time, &site, &config.settings, &lamp, Some(r.measurement)).map_err(|e| {
-                let what = crate::args::describe(e, str::to_owned, " = ");
-                ParamError(format!(
-                    "--measurements {} data row {} ({}): {what}",
-                    file.display(),
-                    i + 1,
-                    r.unix.rfc3339()
-                ))
-            })?;
-        let w = s
-            .weather
-            .map_or((0, 0.0), |w| (w.sky_type, w.clear_sky_index));
-        lines.push(format!(
-            "{},{},{},{}",
-            r.unix.rfc3339(),
-            row_fields(&s),
-            w.0,
-            crate::csv_output::number(f64::from(w.1))
-        ));
+    let run = |r: &MeasuredRow| {
+        step(&r.time, &site, &config.settings, &lamp, Some(r.measurement)).map_err(|e| {
+            let what = crate::args::describe(e, column_name, " ");
+            ParamError(format!(
+                "--measurements {} line {} ({}): {what}",
+                file.display(),
+                r.line,
+                r.unix.rfc3339()
+            ))
+        })
+    };
+    read_measurements(file, format, &mut |r| {
+        run(r).map(|_| ()).map_err(Into::into)
+    })?;
+    writeln!(output, "{MEASURED_HEADER}")?;
+    read_measurements(file, format, &mut |r| {
+        let s = run(r)?;
+        writeln!(output, "{},{}", r.unix.rfc3339(), measured_fields(&s))?;
+        Ok(())
+    })
+}
+
+/// The file's column for a sky-core parameter.
+fn column_name(parameter: &str) -> String {
+    match parameter {
+        "global irradiance" => "the global irradiance (ghi_wm2)",
+        "diffuse irradiance" => "the diffuse irradiance (dhi_wm2)",
+        "global illuminance" => "the global illuminance (global_lux)",
+        other => other,
     }
-    writeln!(output, "{SCHEDULE_HEADER},{MEASURED_COLUMNS}")?;
-    for l in lines {
-        writeln!(output, "{l}")?;
-    }
-    Ok(())
+    .to_owned()
 }
 
 /// Writes the schedule of one UTC day as CSV ([`SCHEDULE_HEADER`]): one row every
@@ -319,7 +640,18 @@ mod tests {
     use super::*;
 
     fn parse(text: &str) -> Result<Vec<MeasuredRow>, String> {
-        parse_measurements(&mut text.as_bytes(), "--measurements m.csv").map_err(|e| e.0)
+        let mut rows = Vec::new();
+        parse_measurements(
+            &mut text.as_bytes(),
+            "--measurements m.csv",
+            MeasurementFormat::Csv,
+            &mut |r| {
+                rows.push(*r);
+                Ok(())
+            },
+        )
+        .map_err(|e| format!("{e:#}"))?;
+        Ok(rows)
     }
 
     /// Bad rows are refused with the file, the line and the column; good files with a
@@ -340,14 +672,6 @@ mod tests {
                 "line 3: ghi_wm2 `NaN`: expected a finite number",
             ),
             ("2026-06-21T10:01:00Z,inf,100", "line 3: ghi_wm2 `inf`"),
-            (
-                "2026-06-21T10:01:00Z,800,-1",
-                "line 3: dhi_wm2 `-1`: expected a finite number, at least 0",
-            ),
-            (
-                "2026-06-21T10:01:00Z,100,200",
-                "line 3: dhi_wm2 200 is above ghi_wm2 100",
-            ),
             ("2026-06-21 10:01,800,100", "line 3: utc"),
             ("yesterday,800,100", "line 3: utc"),
             (
@@ -373,6 +697,7 @@ mod tests {
             "time,ghi_wm2",
             "utc,global_lux,ghi_wm2",
             "utc,dhi_wm2",
+            "utc,ghi_wm2,GHI_WM2",
             "2026-06-21T10:00:00Z,800",
         ] {
             let e = parse(&format!("# c\n{bad_header}\n")).expect_err(bad_header);
@@ -381,7 +706,7 @@ mod tests {
                 "{e}"
             );
         }
-        assert!(parse("").expect_err("empty").ends_with("the file is empty"));
+        assert!(parse("").expect_err("empty").contains("the file is empty"));
         let long = format!(
             "utc,global_lux\n{}\n",
             "1".repeat(crate::csv_input::MAX_LINE_BYTES + 1)

@@ -94,7 +94,6 @@ fn values(s: &Step) -> Vec<f64> {
     v.extend(s.drive.levels.iter().map(|&l| f64::from(l)));
     if let Some(w) = &s.weather {
         v.extend([
-            f64::from(w.clear_sky_index),
             f64::from(w.overcast_fraction),
             f64::from(w.global_irradiance),
         ]);
@@ -171,7 +170,7 @@ fn a_day_of_lux_readings_is_continuous_and_clear_when_the_sky_is() {
             assert_eq!(measured.melanopic_edi, clear.melanopic_edi, "{m}");
             let w = measured.weather.expect("weather");
             assert!(
-                w.clear_sky_index == 1.0 && w.overcast_fraction == 0.0,
+                w.clear_sky_index.is_none_or(|i| i == 1.0) && w.overcast_fraction == 0.0,
                 "{m}: {w:?}"
             );
             equal += 1;
@@ -246,11 +245,13 @@ fn a_day_of_irradiance_readings_is_finite_and_steps_only_at_the_bins() {
     assert!(bins.len() >= 3, "{bins:?}");
 }
 
-/// The size of the steps of the Perez global efficacy where a day crosses a bin edge: printed,
-/// and bounded by 6 % (the published model is piecewise by bin).
+/// The change of the illuminance over one second where a day crosses a bin edge (issue 24
+/// item 6): the published efficacy is piecewise by bin and stepped there by up to 4.5 % on
+/// this day; sky-core's, interpolated between the bin centres, moves by no more than the
+/// reading itself does in that second.
 #[test]
 fn efficacy_steps_at_bin_edges_are_bounded() {
-    let mut worst = 0.0f64;
+    let (mut worst, mut worst_ratio, mut crossings) = (0.0f64, 0.0f64, 0);
     for m in 180..=1170u32 {
         let t = f64::from(m) / 60.0;
         let (time, later) = (at(m, 0.0), at(m, 1.0));
@@ -266,11 +267,17 @@ fn efficacy_steps_at_bin_edges_are_bounded() {
             ))),
         );
         if a.weather.map(|w| w.sky_type) != b.weather.map(|w| w.sky_type) {
+            let reading = |s: &Step| f64::from(s.weather.expect("weather").global_irradiance);
+            let input = (reading(&b) - reading(&a)).abs() / reading(&a);
             worst = worst.max(change(&a, &b).0);
+            worst_ratio = worst_ratio.max(change(&a, &b).0 / input.max(1e-9));
+            crossings += 1;
         }
     }
-    println!("largest step of the illuminance at a sky-clearness bin edge: {worst:.2e}");
-    assert!(worst < 0.06, "{worst}");
+    println!(
+        "{crossings} sky-clearness bin edges crossed in one second: the illuminance changes by at most {worst:.2e}, {worst_ratio:.2} times the reading's change"
+    );
+    assert!(crossings > 0 && worst_ratio <= 1.0, "{worst} {worst_ratio}");
 }
 
 /// Any f32 at all (NaN, infinities, subnormals, huge, negative) as a reading, any time of the

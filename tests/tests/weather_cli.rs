@@ -150,7 +150,7 @@ fn sample_perez_agrees_with_the_reference() {
         let i = (g - d_used) / z.cos();
         let epsilon = reference::sky_clearness(d_used, i, z);
         let delta = reference::sky_brightness(d_used, z, day);
-        let [_, k_diffuse, _] = reference::efficacies(epsilon, delta, z, 2.0);
+        let [_, k_diffuse, _] = reference::interpolated_efficacies(epsilon, delta, z, 2.0);
         let coefficients = reference::all_weather(epsilon, delta, z);
         let az_r = az.to_radians();
         let rel_l = |t: f64, p: f64| reference::all_weather_luminance(coefficients, t, p, z, az_r);
@@ -232,8 +232,24 @@ fn schedule_measurements_agree_with_the_reference() {
     let out = schedule_vienna(global.to_str().expect("utf8")).unwrap_or_else(|e| panic!("{}", e.0));
     let mut lines = out.lines();
     let header: Vec<&str> = lines.next().expect("header").split(',').collect();
-    assert_eq!(&header[18..], ["sky_type", "clear_sky_index"]);
-    let mut worst = 0.0f64;
+    assert_eq!(
+        &header[12..],
+        [
+            "x",
+            "y",
+            "melanopic_edi_lux",
+            "ghi_wm2",
+            "dhi_wm2",
+            "dni_wm2",
+            "global_lux",
+            "diffuse_lux",
+            "direct_lux",
+            "clear_global_lux",
+            "clear_sky_index",
+            "sky_type"
+        ]
+    );
+    let (mut worst, mut worst_parts) = (0.0f64, 0.0f64);
     for (line, (t, g, _)) in lines.zip(readings) {
         let f: Vec<&str> = line.split(',').collect();
         assert_eq!(f[0], t);
@@ -244,17 +260,38 @@ fn schedule_measurements_agree_with_the_reference() {
         let i = (g - d) / z.cos();
         let epsilon = reference::sky_clearness(d, i, z);
         let delta = reference::sky_brightness(d, z, day);
-        let [k_global, _, _] = reference::efficacies(epsilon, delta, z, 2.0);
+        let [k_global, k_diffuse, k_direct] =
+            reference::interpolated_efficacies(epsilon, delta, z, 2.0);
         let lux = g * k_global;
+        // The split's light: the diffuse and the direct (on the horizontal) through their
+        // own efficacies.
+        let (diffuse_lux, direct_lux) = (d * k_diffuse, i * z.cos() * k_direct);
+        worst_parts = worst_parts
+            .max((num(f[19]) - diffuse_lux).abs() / diffuse_lux)
+            .max((num(f[20]) - direct_lux).abs() / direct_lux.max(1.0));
         worst = worst.max((num(f[7]) - lux).abs() / lux);
-        assert_eq!(f[18], (reference::bin(epsilon) + 1).to_string(), "{line}");
-        let index = num(f[19]);
-        assert!(index.is_finite() && index > 0.0, "{line}");
+        worst = worst.max((num(f[18]) - lux).abs() / lux);
+        // The reading and its split (W/m², printed to 1e-4 W/m²).
+        assert_eq!(num(f[15]), g, "{line}");
+        assert!(
+            (num(f[16]) - d).abs() < 1e-3 * d.max(1.0),
+            "{line}: dhi {d}"
+        );
+        assert!(
+            (num(f[17]) - i).abs() < 1e-3 * i.max(1.0),
+            "{line}: dni {i}"
+        );
+        assert_eq!(f[23], (reference::bin(epsilon) + 1).to_string(), "{line}");
+        let index = num(f[22]);
+        assert!(
+            (index - num(f[18]) / num(f[21])).abs() < 1e-5 * index,
+            "{line}"
+        );
     }
     println!(
-        "schedule --measurements (ghi): illuminance within {worst:.2e} of the reference chain"
+        "schedule --measurements (ghi): illuminance within {worst:.2e} of the reference chain, its diffuse and direct parts within {worst_parts:.2e}"
     );
-    assert!(worst < 1e-4);
+    assert!(worst < 1e-4 && worst_parts < 1e-4);
 }
 
 /// `schedule --measurements` with lux readings equal to the clear-sky schedule's horizontal
@@ -302,8 +339,17 @@ fn schedule_measurements_at_the_clear_sky_level_give_the_clear_sky_rows() {
         schedule_vienna(path.to_str().expect("utf8")).unwrap_or_else(|e| panic!("{}", e.0));
     for (m, c) in measured.lines().skip(1).zip(&rows) {
         let m: Vec<&str> = m.split(',').collect();
-        assert_eq!(&m[..18], &c[..], "{m:?}");
-        assert_eq!(num(m[19]), 1.0, "{m:?}");
+        // The sun, the light followed and its levels, then its chromaticity and melanopic EDI.
+        assert_eq!(&m[..12], &c[..12], "{m:?}");
+        assert_eq!(&m[12..15], &c[15..18], "{m:?}");
+        // The measured global and the clear sky's are the clear-sky row's global.
+        assert_eq!((m[18], m[21]), (c[12], c[12]), "{m:?}");
+        // At night (the clear sky below 100 lx) the index is left empty.
+        if num(c[12]) >= 100.0 {
+            assert_eq!(num(m[22]), 1.0, "{m:?}");
+        } else {
+            assert_eq!(m[22], "", "{m:?}");
+        }
     }
 }
 
@@ -328,11 +374,11 @@ fn bad_measurement_files_name_the_problem() {
         ),
         (
             "utc,ghi_wm2\n2026-06-21T12:00:00Z,4000\n",
-            "global irradiance = 4000 W/m²",
+            "line 2 (2026-06-21T12:00:00Z): the global irradiance (ghi_wm2) 4000 W/m²",
         ),
         (
             "utc,ghi_wm2,dhi_wm2\n2026-06-21T12:00:00Z,300,400\n",
-            "line 2: dhi_wm2 400 is above ghi_wm2 300",
+            "line 2 (2026-06-21T12:00:00Z): the diffuse irradiance (dhi_wm2) 400 W/m²",
         ),
         ("", "empty"),
     ];
@@ -492,4 +538,159 @@ fn bad_weather_flags_are_named() {
     )
     .unwrap_or_else(|e| panic!("{}", e.0));
     assert_eq!(out.lines().count(), 2);
+}
+
+/// A station file in `tests/data/stations/` (see its README).
+fn station_file(name: &str) -> String {
+    format!("{}/data/stations/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Every field of every data row of `csv` is empty or a finite number (the first, the time,
+/// aside), and the rows have the header's number of fields.
+fn assert_finite_fields(csv: &str) {
+    let mut lines = csv.lines();
+    let width = lines.next().expect("header").split(',').count();
+    for line in lines {
+        let f: Vec<&str> = line.split(',').collect();
+        assert_eq!(f.len(), width, "{line}");
+        for v in &f[1..] {
+            assert!(
+                v.is_empty() || v.parse::<f64>().is_ok_and(f64::is_finite),
+                "`{v}` in {line}"
+            );
+        }
+    }
+}
+
+/// Issue 24 item 3: a NOAA SURFRAD file as the network delivers it (Alamosa, 2,317 m, 1 January
+/// 2016: thermal offsets down to −4.4 W/m², a diffuse up to 5.9 W/m² above the global near
+/// the horizon, night rows) runs with no NaN anywhere; the reading is the file's (negatives as
+/// 0, a diffuse slightly above the global as the global), and the sun's zenith agrees with the
+/// file's own `zen` column.
+#[test]
+fn a_raw_surfrad_file_runs() {
+    let file = station_file("surfrad-slv16001-part.dat");
+    let raw = std::fs::read_to_string(&file).expect("the SURFRAD file");
+    let rows: Vec<Vec<f64>> = raw
+        .lines()
+        .skip(2)
+        .map(|l| l.split_whitespace().map(num).collect())
+        .collect();
+    // The file is as delivered: negative globals, diffuse above global, night rows.
+    assert!(rows.iter().any(|r| r[8] < -1.0 && r[9] == 0.0));
+    assert!(rows.iter().any(|r| r[14] > r[8] + 1.0 && r[15] == 0.0));
+    assert!(rows.iter().any(|r| r[7] > 100.0));
+    let out = run(
+        &[
+            "schedule",
+            "--lat",
+            "37.70",
+            "--lon",
+            "-105.92",
+            "--elevation",
+            "2317",
+            "--measurements",
+            &file,
+            "--measurements-format",
+            "surfrad",
+        ],
+        "",
+    )
+    .unwrap_or_else(|e| panic!("{}", e.0));
+    assert_finite_fields(&out);
+    let kept: Vec<&Vec<f64>> = rows
+        .iter()
+        .filter(|r| r[9] == 0.0 && r[8] > -9999.0)
+        .collect();
+    let lines: Vec<Vec<&str>> = out
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    assert_eq!(lines.len(), kept.len());
+    let (mut worst_zenith, mut clamped, mut night) = (0.0f64, 0, 0);
+    for (f, r) in lines.iter().zip(&kept) {
+        let want = format!("2016-01-01T{:02}:{:02}:00Z", r[4], r[5]);
+        assert_eq!(f[0], want);
+        // SURFRAD's `zen` is the apparent (refracted) zenith.
+        worst_zenith = worst_zenith.max((num(f[4]) - r[7]).abs());
+        let (ghi, dhi) = (num(f[15]), num(f[16]));
+        assert!((ghi - r[8].max(0.0)).abs() < 1e-4, "{f:?} {r:?}");
+        assert!(dhi <= ghi, "{f:?}");
+        if r[15] == 0.0 && r[14] > r[8].max(0.0) {
+            clamped += 1;
+            assert_eq!(
+                f[16], f[15],
+                "a diffuse above the global counts as it: {f:?}"
+            );
+        }
+        if r[7] > 90.0 {
+            night += 1;
+            assert_eq!(f[23], "0", "{f:?}");
+        }
+    }
+    println!(
+        "SURFRAD Alamosa: {} rows, {night} with the sun down, {clamped} diffuse readings above the global; apparent sun zenith within {worst_zenith:.3} deg of the file's",
+        lines.len()
+    );
+    assert!(clamped > 0 && night > 0);
+    // SURFRAD's zen column is given to 0.01 deg; it leads or lags by about 0.1 deg near the
+    // horizon, as if for the middle of the minute (the sun moves 0.18 deg a minute there).
+    assert!(worst_zenith < 0.15, "{worst_zenith}");
+}
+
+/// Issue 24 item 3: an NREL MIDC raw-data file as delivered (University of Arizona, Tucson,
+/// 18 October 2018, times in MST: night rows with globals down to −2.6 W/m², a diffuse of 0)
+/// runs with no NaN anywhere, its times shifted from MST to UTC, its global the first `Global
+/// Horiz` column's (the tracker's) and its diffuse the file's.
+#[test]
+fn a_raw_midc_file_runs() {
+    let file = station_file("midc-uat-raw-20181018-part.txt");
+    let raw = std::fs::read_to_string(&file).expect("the MIDC file");
+    let rows: Vec<Vec<f64>> = raw
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(num).collect())
+        .collect();
+    assert!(rows.iter().any(|r| r[6] < -1.0));
+    let out = run(
+        &[
+            "schedule",
+            "--lat",
+            "32.22969",
+            "--lon",
+            "-110.95534",
+            "--elevation",
+            "786",
+            "--measurements",
+            &file,
+            "--measurements-format",
+            "midc",
+        ],
+        "",
+    )
+    .unwrap_or_else(|e| panic!("{}", e.0));
+    assert_finite_fields(&out);
+    let lines: Vec<Vec<&str>> = out
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    assert_eq!(lines.len(), rows.len());
+    for (f, r) in lines.iter().zip(&rows) {
+        // HHMM in MST, 7 hours behind UTC.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let hhmm = r[3] as u32;
+        let want = format!("2018-10-18T{:02}:{:02}:00Z", hhmm / 100 + 7, hhmm % 100);
+        assert_eq!(f[0], want);
+        assert!((num(f[15]) - r[6].max(0.0)).abs() < 1e-3, "{f:?} {r:?}");
+        let dhi = num(f[16]);
+        assert!(dhi <= num(f[15]), "{f:?}");
+        if r[6] > 50.0 {
+            assert!((dhi - r[5]).abs() < 1e-3, "the file's diffuse: {f:?} {r:?}");
+        }
+    }
+    let up = lines.iter().filter(|f| num(f[3]) > 0.0).count();
+    println!("MIDC UAT: {} rows, {up} with the sun up", lines.len());
+    assert!(up > 100 && up < lines.len());
 }

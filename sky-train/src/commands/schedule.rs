@@ -10,7 +10,7 @@ use crate::args::{date, elevation, in_range, latitude, longitude};
 use sky_core::controller::{Light, Settings};
 use sky_core::solar::SunAlgorithm;
 
-use crate::controller::{ScheduleConfig, read_measurements, schedule, schedule_measured};
+use crate::controller::{MeasurementFormat, ScheduleConfig, schedule, schedule_measured};
 
 /// `schedule`'s arguments.
 #[derive(Args)]
@@ -24,13 +24,26 @@ pub struct ScheduleArgs {
     /// The UTC date, YYYY-MM-DD (years 1 to 2999); required unless --measurements is given.
     #[arg(long, value_name = "YYYY-MM-DD", value_parser = date, required_unless_present = "measurements", conflicts_with = "measurements")]
     pub date: Option<(i32, u32, u32)>,
-    /// Drive the schedule by outdoor measurements instead of the clear sky: a CSV file whose
-    /// header names `utc` (RFC 3339) and `global_lux` (a lux sensor) or `ghi_wm2` with optional
-    /// `dhi_wm2` (pyranometers). One output row per reading, with two more columns: sky_type
-    /// (the Perez sky-clearness bin, 1 overcast to 8 clear; 0 with the sun below the horizon)
-    /// and clear_sky_index (the reading over the clear sky's global horizontal illuminance).
-    #[arg(long, value_name = "FILE.csv")]
+    /// Drive the schedule by outdoor measurements instead of the clear sky: a file of readings
+    /// (--measurements-format; the default CSV's header names `utc` (RFC 3339) and `global_lux`
+    /// (a lux sensor) or `ghi_wm2` with optional `dhi_wm2` (pyranometers)). Thermal offsets
+    /// down to -10 W/m2 (-1100 lx) count as 0, a diffuse up to max(10 W/m2, 5 %) above the
+    /// global as the global; night readings are used. One output row per reading: the sun; the
+    /// light followed (cct_k, duv, horizontal_lux, RGBW, x, y, melanopic_edi_lux: the measured
+    /// light with its colour under cloud); ghi_wm2, dhi_wm2, dni_wm2 (the reading and its
+    /// split: the file's diffuse, else Erbs's); global_lux, diffuse_lux, direct_lux (the
+    /// measured light through Perez's efficacies); clear_global_lux (the clear sky's);
+    /// clear_sky_index (global_lux over clear_global_lux, empty where the clear sky is below
+    /// 100 lx, at night); sky_type (the Perez sky-clearness bin, 1 overcast to 8 clear; 0 with
+    /// the sun below the horizon).
+    #[arg(long, value_name = "FILE")]
     pub measurements: Option<PathBuf>,
+    /// The layout of --measurements: csv (the header above), surfrad (a NOAA SURFRAD daily
+    /// file as delivered: GHI dw_solar, DHI diffuse, rows with a bad flag or missing GHI
+    /// skipped) or midc (an NREL MIDC raw-data file: Year, DOY, a time column named by its
+    /// time zone, the first Global... and Diffuse... columns in W/m^2).
+    #[arg(long, value_enum, value_name = "FORMAT", default_value_t = FormatArg::Csv, requires = "measurements")]
+    pub measurements_format: FormatArg,
     /// Minutes between rows, from 00:00 UTC (1 to 1440; not with --measurements).
     #[arg(long, value_name = "MIN", default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=1440), conflicts_with = "measurements")]
     pub step: u32,
@@ -52,6 +65,17 @@ pub struct ScheduleArgs {
     /// Horizontal illuminance in lux at which the luminaire gives its full output (1 to 200000).
     #[arg(long, value_name = "LUX", default_value_t = 10_000.0, value_parser = full_scale_lux)]
     pub full_scale_lux: f32,
+}
+
+/// `--measurements-format`.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum FormatArg {
+    /// CSV with a header naming utc and global_lux, or ghi_wm2 and optionally dhi_wm2.
+    Csv,
+    /// A NOAA SURFRAD daily file.
+    Surfrad,
+    /// An NREL MIDC raw-data file.
+    Midc,
 }
 
 #[allow(clippy::cast_possible_truncation)]
@@ -103,7 +127,14 @@ pub fn run(args: &ScheduleArgs, output: &mut dyn Write) -> Result<()> {
     };
     let mut out = BufWriter::new(output);
     match &args.measurements {
-        Some(file) => schedule_measured(&config, &read_measurements(file)?, file, &mut out)?,
+        Some(file) => {
+            let format = match args.measurements_format {
+                FormatArg::Csv => MeasurementFormat::Csv,
+                FormatArg::Surfrad => MeasurementFormat::Surfrad,
+                FormatArg::Midc => MeasurementFormat::Midc,
+            };
+            schedule_measured(&config, file, format, &mut out)?;
+        }
         None => schedule(&config, &mut out)?,
     }
     out.flush()?;

@@ -51,12 +51,21 @@ impl Perez {
             }
         };
         let day = params.day_of_year.unwrap_or(DEFAULT_DAY_OF_YEAR);
-        let reading = measurement
-            .read(sun.zenith(), day)
-            .map_err(|e| param_error(kind, e))?;
+        // A sun from --time (the day of the year is known only then) is named by --time.
+        let error = |e: sky_core::SkyError| match e {
+            sky_core::SkyError::SunBelowHorizon { zenith } if params.day_of_year.is_some() => {
+                ParamError(format!(
+                    "--time: the sun is {:.2} deg below the horizon then (sun zenith {:.2} deg); --model perez takes the sun from the zenith down to the horizon (zenith 0 to 90 deg)",
+                    zenith.to_degrees() - 90.0,
+                    zenith.to_degrees()
+                ))
+            }
+            other => param_error(kind, other),
+        };
+        let reading = measurement.read(sun.zenith(), day).map_err(error)?;
         PerezSky::from_reading(sun, &reading)
             .map(Self)
-            .map_err(|e| param_error(kind, e))
+            .map_err(error)
     }
 }
 

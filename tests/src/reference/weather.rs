@@ -269,6 +269,52 @@ pub fn efficacies(epsilon: f64, delta: f64, z: f64, w: f64) -> [f64; 3] {
     ]
 }
 
+/// The bin centres of sky-core's continuous efficacies (docs/weather.md): the middle of Perez's
+/// bins 1-7 (edges 1, 1.065, 1.23, 1.5, 1.95, 2.8, 4.5, 6.2) and 6.2 + (6.2 − 4.5) / 2 for the
+/// open bin 8.
+pub const CENTRES: [f64; 8] = [
+    (1.0 + 1.065) / 2.0,
+    (1.065 + 1.23) / 2.0,
+    (1.23 + 1.5) / 2.0,
+    (1.5 + 1.95) / 2.0,
+    (1.95 + 2.8) / 2.0,
+    (2.8 + 4.5) / 2.0,
+    (4.5 + 6.2) / 2.0,
+    6.2 + (6.2 - 4.5) / 2.0,
+];
+
+/// The reference's (binned, Perez 1990 Table 4) efficacies interpolated linearly in ε between
+/// [`CENTRES`], constant beyond the first and last: the documented rule, in f64. Linear in the
+/// coefficients, so equal to interpolating the efficacies (before the direct one's max(0, ·)).
+#[must_use]
+pub fn interpolated_efficacies(epsilon: f64, delta: f64, z: f64, w: f64) -> [f64; 3] {
+    let at = |e: f64| efficacies(e, delta, z, w);
+    if epsilon <= CENTRES[0] {
+        return at(CENTRES[0]);
+    }
+    if epsilon >= CENTRES[7] {
+        return at(CENTRES[7]);
+    }
+    let j = (0..7).rfind(|&j| CENTRES[j] <= epsilon).unwrap_or(0);
+    let t = (epsilon - CENTRES[j]) / (CENTRES[j + 1] - CENTRES[j]);
+    // The direct efficacy's max(0, ·) is taken after the interpolation.
+    let parts = |e: f64| {
+        let [g, d, _] = at(e);
+        [g, d, direct_efficacy_unclamped(e, delta, z, w)]
+    };
+    let (a, b) = (parts(CENTRES[j]), parts(CENTRES[j + 1]));
+    let lerp = |i: usize| a[i] + t * (b[i] - a[i]);
+    [lerp(0), lerp(1), lerp(2).max(0.0)]
+}
+
+/// The Perez 1990 direct efficacy (lm/W) of [`efficacies`] before its max(0, ·).
+#[must_use]
+pub fn direct_efficacy_unclamped(epsilon: f64, delta: f64, z: f64, w: f64) -> f64 {
+    let k = bin(epsilon);
+    let d = delta.clamp(0.01, 0.6);
+    BEAM_A[k] + BEAM_B[k] * w + BEAM_C[k] * (5.73 * z - 5.0).exp() + BEAM_D[k] * d
+}
+
 /// Erbs et al. 1982, eq. 1: the hourly diffuse fraction at clearness index `kt`.
 #[must_use]
 pub fn erbs(kt: f64) -> f64 {
