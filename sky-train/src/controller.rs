@@ -65,17 +65,10 @@ pub const MAX_MEASUREMENT_BYTES: u64 = 64 << 20;
 /// A [`ParamError`] naming `--measurements` and the file: it cannot be read, is too long, or
 /// [`parse_measurements`] refuses it.
 pub fn read_measurements(path: &Path) -> Result<Vec<MeasuredRow>, ParamError> {
-    use std::io::Read;
     let source = format!("--measurements {}", path.display());
-    let file = std::fs::File::open(path).map_err(|e| ParamError(format!("{source}: {e}")))?;
-    let mut input = std::io::BufReader::new(file.take(MAX_MEASUREMENT_BYTES + 1));
-    let rows = parse_measurements(&mut input, &source)?;
-    if input.get_ref().limit() == 0 {
-        return Err(ParamError(format!(
-            "{source}: longer than {MAX_MEASUREMENT_BYTES} bytes"
-        )));
-    }
-    Ok(rows)
+    let file = crate::csv_input::open(path, MAX_MEASUREMENT_BYTES)
+        .map_err(|e| ParamError(format!("{source}: {e}")))?;
+    parse_measurements(&mut std::io::BufReader::new(file), &source)
 }
 
 /// Parses outdoor measurements ([`crate::csv_input::lines`]): a header naming the columns `utc`
