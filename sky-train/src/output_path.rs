@@ -427,8 +427,38 @@ mod tests {
         assert!(folder("--out", &dir.path().join("new/deeper")).is_ok());
         assert!(!dir.path().join("new").exists(), "nothing created");
         assert!(file_ending("--out", &dir.path().join("s.PNG"), &["png"]).is_ok());
+        // A link is checked where it points: at a folder, refused; at a new file, taken.
+        let to_dir = dir.path().join("to-dir.png");
+        std::os::unix::fs::symlink(dir.path().join("new"), &to_dir).expect("link");
+        std::fs::create_dir(dir.path().join("new")).expect("folder");
+        assert!(
+            message(file("--out", &to_dir, Folder::Existing)).ends_with("is a folder, not a file")
+        );
+        std::fs::remove_dir(dir.path().join("new")).expect("removed");
+        assert_eq!(resolve(&to_dir).expect("resolved"), dir.path().join("new"));
+        std::fs::remove_file(&to_dir).expect("removed");
         // The probe leaves nothing behind.
         let left: Vec<_> = std::fs::read_dir(dir.path()).expect("dir").collect();
         assert_eq!(left.len(), 1, "{left:?}");
+    }
+
+    #[test]
+    fn only_our_temporary_names_count() {
+        for (name, ours) in [
+            (".sky-train-Ab12Cd", true),
+            (".sky-train-000000", true),
+            (".sky-train-Ab12C", false),
+            (".sky-train-Ab12Cde", false),
+            (".sky-train-check-Ab12Cd", false),
+            (".sky-train-cache", false),
+            (".sky-train-Ab-2Cd", false),
+            ("x.sky-train-Ab12Cd", false),
+        ] {
+            assert_eq!(
+                is_temporary_name(std::ffi::OsStr::new(name)),
+                ours,
+                "{name}"
+            );
+        }
     }
 }
