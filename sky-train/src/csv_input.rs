@@ -42,7 +42,7 @@ fn kind_of(file_type: std::fs::FileType) -> &'static str {
 
 /// The bytes shown in a message: `64 MiB` for whole MiB, else the count.
 fn shown_bytes(n: u64) -> String {
-    if n >= 1 << 20 && n % (1 << 20) == 0 {
+    if n >= 1 << 20 && n.is_multiple_of(1 << 20) {
         format!("{} MiB", n >> 20)
     } else {
         format!("{n} bytes")
