@@ -222,9 +222,9 @@ impl Drop for Temporary {
 /// Any I/O error, with the path in its context; a socket; the temporary file is removed on
 /// failure.
 pub fn write_atomically(path: &Path, write: impl FnOnce(&mut File) -> Result<()>) -> Result<()> {
-    let target =
-        resolve(path).with_context(|| format!("cannot follow the link {}", path.display()))?;
-    let existing = match std::fs::metadata(&target) {
+    // What the path names, links followed by the kernel (which also follows the magic links
+    // of /proc: `/dev/stdout` to a pipe is no path that `resolve` could name).
+    let existing = match std::fs::metadata(path) {
         Ok(m) => Some(m),
         Err(e) if e.kind() == ErrorKind::NotFound => None,
         Err(e) => return Err(e).with_context(|| format!("cannot write {}", path.display())),
@@ -232,8 +232,10 @@ pub fn write_atomically(path: &Path, write: impl FnOnce(&mut File) -> Result<()>
     if let Some(m) = &existing
         && !m.is_file()
     {
-        return write_directly(path, &target, m, write);
+        return write_directly(path, m, write);
     }
+    let target =
+        resolve(path).with_context(|| format!("cannot follow the link {}", path.display()))?;
     let dir = parent(&target);
     sweep_temporaries(&dir);
     let tmp = Temporary::new(&dir)
@@ -255,10 +257,9 @@ pub fn write_atomically(path: &Path, write: impl FnOnce(&mut File) -> Result<()>
     Ok(())
 }
 
-/// Writes through `write` to the device or FIFO `target` (the value `path` names), in place.
+/// Writes through `write` to the device or FIFO at `path` (links followed), in place.
 fn write_directly(
     path: &Path,
-    target: &Path,
     meta: &std::fs::Metadata,
     write: impl FnOnce(&mut File) -> Result<()>,
 ) -> Result<()> {
@@ -275,7 +276,7 @@ fn write_directly(
     }
     let mut file = File::options()
         .write(true)
-        .open(target)
+        .open(path)
         .with_context(|| format!("cannot open {} for writing", path.display()))?;
     write(&mut file).with_context(|| format!("cannot write {}", path.display()))?;
     std::io::Write::flush(&mut file).with_context(|| format!("cannot write {}", path.display()))?;
@@ -305,9 +306,7 @@ pub fn file(flag: &str, path: &Path, folder: Folder) -> Result<(), ParamError> {
             path.display()
         )));
     }
-    let target =
-        resolve(path).map_err(|e| ParamError(format!("{flag} {}: {e}", path.display())))?;
-    if let Ok(m) = std::fs::metadata(&target)
+    if let Ok(m) = std::fs::metadata(path)
         && !m.is_file()
     {
         // A device or a FIFO is written directly, with no temporary file.
@@ -319,6 +318,8 @@ pub fn file(flag: &str, path: &Path, folder: Folder) -> Result<(), ParamError> {
         }
         return Ok(());
     }
+    let target =
+        resolve(path).map_err(|e| ParamError(format!("{flag} {}: {e}", path.display())))?;
     let parent = parent(&target);
     sweep_temporaries(&parent);
     match folder {

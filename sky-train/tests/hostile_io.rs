@@ -237,6 +237,25 @@ fn an_output_that_is_a_fifo_is_written_to_its_reader() {
     }
 }
 
+/// Item 1: an output that is a link to `/dev/stdout` (here a pipe to the test) prints the
+/// file on stdout; the link stays.
+#[test]
+fn an_output_linked_to_stdout_prints_the_file() {
+    let dir = tempdir();
+    let link = dir.path().join("stdout.png");
+    std::os::unix::fs::symlink("/dev/stdout", &link).expect("link");
+    let args = render(&link);
+    let out = run(&strs(&args), "");
+    checked_success(&strs(&args), &out);
+    assert!(
+        out.stdout.starts_with(PNG_SIGNATURE),
+        "{:?}",
+        &out.stdout[..8.min(out.stdout.len())]
+    );
+    let m = std::fs::symlink_metadata(&link).expect("still there");
+    assert!(m.file_type().is_symlink(), "{:?}", m.file_type());
+}
+
 /// Item 1: a socket at `--out` is refused at once (exit 2, naming the flag), not replaced.
 #[test]
 fn an_output_that_is_a_socket_is_refused() {

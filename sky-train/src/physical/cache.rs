@@ -714,6 +714,22 @@ mod tests {
         assert!(e.to_string().contains("after its tables"), "{e}");
     }
 
+    /// Writes the fuzz target's seeds (`fuzz/corpus/physical_cache/`): the small resolution's
+    /// default atmosphere as a whole file, and its body alone (which the target seals).
+    #[test]
+    #[ignore = "regenerates fuzz seeds: cargo test -p sky-train --lib write_fuzz_seeds -- --ignored"]
+    fn write_fuzz_seeds() {
+        let (_, bytes) = small();
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../fuzz/corpus/physical_cache");
+        std::fs::create_dir_all(&dir).expect("corpus folder");
+        std::fs::write(dir.join("small_default.bin"), bytes).expect("seed");
+        std::fs::write(
+            dir.join("small_default_body.bin"),
+            &bytes[20..bytes.len() - 8],
+        )
+        .expect("seed");
+    }
+
     #[test]
     fn parameters_that_are_the_same_atmosphere_share_a_key() {
         let res = Resolution::default();
