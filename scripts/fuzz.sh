@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Coverage-guided fuzzing of every decoder of outside input (fuzz/fuzz_targets/), with libFuzzer
 # through cargo-fuzz (installed by scripts/setup.sh into .tools/cargo-fuzz):
-#   scripts/fuzz.sh [SECONDS]   builds the targets, then runs each for SECONDS (default 25; six
-#                               targets, 150 s in all), starting from the seeds in fuzz/corpus/
+#   scripts/fuzz.sh [SECONDS]   builds the targets, then runs each for SECONDS (default 25; seven
+#                               targets, 175 s in all), starting from the seeds in fuzz/corpus/
 # Prints per target the executions, the coverage reached (libFuzzer's `cov`: instrumented edges,
 # and `ft`: features) and the corpus size; exits non-zero on the first crash, leak, timeout or
 # out-of-memory, whose input libFuzzer writes to fuzz/artifacts/TARGET/.
@@ -15,7 +15,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 seconds=${1:-25}
 cargo_fuzz="${SKY_CARGO_FUZZ:-$root/.tools/cargo-fuzz/bin/cargo-fuzz}"
-TARGETS=(weight_file capture_frame capture_manifest style_file stdin_csv measurements)
+TARGETS=(weight_file capture_frame capture_manifest style_file stdin_csv measurements physical_cache)
 
 cd "$root/fuzz"
 "$cargo_fuzz" build --sanitizer none --release

@@ -586,7 +586,7 @@ pub fn cct_report(results: &[CctMeasurement]) -> String {
 pub fn physical(dirs: &[Vec3], runs: usize, results: &[Measurement]) -> Result<String> {
     use crate::physical::{Atmosphere, PhysicalAtmosphere, Resolution};
     let load = || {
-        std::fs::read_to_string("/proc/loadavg")
+        crate::csv_input::read_text(std::path::Path::new("/proc/loadavg"), "/proc/loadavg", 4096)
             .ok()
             .and_then(|s| s.split_whitespace().next().map(str::to_owned))
             .unwrap_or_else(|| "?".into())

@@ -102,47 +102,17 @@ pub const MAX_MEASUREMENT_BYTES: u64 = 64 << 20;
 ///
 /// # Errors
 /// A [`ParamError`] naming `--measurements` and the file: it is not a regular file, cannot be
-/// read, is too long, or its parser refuses it ([`parse_measurements`]); or `each`'s error.
+/// read, is too long ([`crate::csv_input::open`]), or its parser refuses it
+/// ([`parse_measurements`]); or `each`'s error.
 pub fn read_measurements(
     path: &Path,
     format: MeasurementFormat,
     each: &mut dyn FnMut(&MeasuredRow) -> Result<()>,
 ) -> Result<()> {
-    use std::io::Read;
     let source = format!("--measurements {}", path.display());
-    let file = std::fs::File::open(path).map_err(|e| ParamError(format!("{source}: {e}")))?;
-    let meta = file
-        .metadata()
+    let file = crate::csv_input::open(path, MAX_MEASUREMENT_BYTES)
         .map_err(|e| ParamError(format!("{source}: {e}")))?;
-    if !meta.is_file() {
-        let what = if meta.is_dir() {
-            "a directory"
-        } else {
-            "not a regular file"
-        };
-        return Err(ParamError(format!(
-            "{source}: is {what}; expected a regular file of measurements"
-        ))
-        .into());
-    }
-    if meta.len() > MAX_MEASUREMENT_BYTES {
-        return Err(ParamError(format!(
-            "{source}: longer than {MAX_MEASUREMENT_BYTES} bytes (64 MiB)"
-        ))
-        .into());
-    }
-    let mut input = std::io::BufReader::new(file.take(MAX_MEASUREMENT_BYTES + 1));
-    let too_long =
-        |input: &std::io::BufReader<std::io::Take<std::fs::File>>| input.get_ref().limit() == 0;
-    let result = parse_measurements(&mut input, &source, format, each);
-    // A file over the limit is named as such, whatever the parser made of its first 64 MiB.
-    if too_long(&input) {
-        return Err(ParamError(format!(
-            "{source}: longer than {MAX_MEASUREMENT_BYTES} bytes (64 MiB)"
-        ))
-        .into());
-    }
-    result
+    parse_measurements(&mut std::io::BufReader::new(file), &source, format, each)
 }
 
 /// The thermal-offset and range rule is sky-core's ([`sky_core::measurement::Measurement`]);

@@ -1,5 +1,13 @@
 //! Two-column CSV on stdin (`sample`'s view directions, `cct`'s chromaticities), read by one
-//! parser for every command.
+//! parser for every command; and the one bounded reader of every file the project reads
+//! ([`open`], [`read_text`], [`read_lines`]).
+//!
+//! Every file read is first checked to be a regular file (symbolic links followed: a folder, a
+//! FIFO, a device or a socket is refused before it is opened for reading, so that a FIFO cannot
+//! hang the process and `/dev/zero` cannot fill its memory), then read through a
+//! [`BoundedFile`] that fails once more than the limit for its kind has been read (so a file
+//! that grows while it is read is stopped too). Text is read in lines of at most
+//! [`MAX_LINE_BYTES`].
 //!
 //! A line is two comma-separated numbers; blank lines are skipped. The first line may instead
 //! be a header: exactly the two column names (case and surrounding spaces aside), so that a
@@ -8,9 +16,211 @@
 //! is dropped. Numbers must be finite. Lines are at most [`MAX_LINE_BYTES`] long; the rows are
 //! an iterator, so a command can work through any number of them in bounded memory.
 
-use std::io::BufRead;
+use std::fs::File;
+use std::io::{BufRead, Read, Seek};
+use std::path::Path;
 
 use crate::args::ParamError;
+
+/// What kind of thing a file that is not a regular file is, for messages.
+fn kind_of(file_type: std::fs::FileType) -> &'static str {
+    use std::os::unix::fs::FileTypeExt;
+    if file_type.is_dir() {
+        "a folder"
+    } else if file_type.is_fifo() {
+        "a FIFO"
+    } else if file_type.is_char_device() {
+        "a character device"
+    } else if file_type.is_block_device() {
+        "a block device"
+    } else if file_type.is_socket() {
+        "a socket"
+    } else {
+        "not a regular file"
+    }
+}
+
+/// The bytes shown in a message: `64 MiB` for whole MiB, else the count.
+fn shown_bytes(n: u64) -> String {
+    if n >= 1 << 20 && n.is_multiple_of(1 << 20) {
+        format!("{} MiB", n >> 20)
+    } else {
+        format!("{n} bytes")
+    }
+}
+
+/// A regular file open for reading that fails a read once more than its limit has been read
+/// from it (made by [`open`]).
+#[derive(Debug)]
+pub struct BoundedFile {
+    file: File,
+    limit: u64,
+    at: u64,
+}
+
+impl BoundedFile {
+    /// The limit, in bytes.
+    #[must_use]
+    pub fn limit(&self) -> u64 {
+        self.limit
+    }
+
+    fn too_long(&self) -> std::io::Error {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "longer than {}, the largest file of its kind read",
+                shown_bytes(self.limit)
+            ),
+        )
+    }
+}
+
+impl Read for BoundedFile {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        if self.at > self.limit {
+            return Err(self.too_long());
+        }
+        // One byte past the limit is asked for, so that a longer file shows.
+        let room = usize::try_from(self.limit - self.at + 1).unwrap_or(usize::MAX);
+        let n = buf.len().min(room);
+        let got = self.file.read(&mut buf[..n])?;
+        self.at += got as u64;
+        if self.at > self.limit {
+            return Err(self.too_long());
+        }
+        Ok(got)
+    }
+}
+
+impl Seek for BoundedFile {
+    fn seek(&mut self, pos: std::io::SeekFrom) -> std::io::Result<u64> {
+        self.at = self.file.seek(pos)?;
+        Ok(self.at)
+    }
+}
+
+/// Opens `path` for reading at most `max_bytes` from it: it must be a regular file (symbolic
+/// links followed), checked before it is opened and again on the open file, and not longer
+/// than `max_bytes` by its length (then by what is read, see [`BoundedFile`]).
+///
+/// # Errors
+/// An I/O error whose message says what is wrong (`is a FIFO, not a regular file`, `is 80 MiB
+/// long, more than 64 MiB ...`), without the path: callers name the file and its flag.
+pub fn open(path: &Path, max_bytes: u64) -> std::io::Result<BoundedFile> {
+    use std::os::unix::fs::OpenOptionsExt;
+    let not_regular = |t: std::fs::FileType| {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            format!("is {}, not a regular file", kind_of(t)),
+        )
+    };
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(not_regular(meta.file_type()));
+    }
+    // Non-blocking, in case the path was swapped for a FIFO after the check: the open does not
+    // wait for a writer, and the check on the open file below refuses it.
+    #[allow(clippy::cast_possible_wrap)] // a flag bit
+    let file = File::options()
+        .read(true)
+        .custom_flags(rustix::fs::OFlags::NONBLOCK.bits() as i32)
+        .open(path)?;
+    let meta = file.metadata()?;
+    if !meta.is_file() {
+        return Err(not_regular(meta.file_type()));
+    }
+    if meta.len() > max_bytes {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "is {} long, more than {}, the largest file of its kind read",
+                shown_bytes(meta.len()),
+                shown_bytes(max_bytes)
+            ),
+        ));
+    }
+    Ok(BoundedFile {
+        file,
+        limit: max_bytes,
+        at: 0,
+    })
+}
+
+/// Reads the text file `path` whole through [`open`] (at most `max_bytes`), with every line at
+/// most [`MAX_LINE_BYTES`] long.
+///
+/// # Errors
+/// A [`ParamError`] starting with `source` (the flag and the file, e.g. `--style s.toml`):
+/// the file cannot be opened, is not a regular file, is too long, is not UTF-8 or has a line
+/// longer than [`MAX_LINE_BYTES`] (named by its number).
+pub fn read_text(path: &Path, source: &str, max_bytes: u64) -> Result<String, ParamError> {
+    let mut text = String::new();
+    open(path, max_bytes)
+        .and_then(|mut f| f.read_to_string(&mut text))
+        .map_err(|e| ParamError(format!("{source}: {e}")))?;
+    for (n, line) in text.split('\n').enumerate() {
+        if line.len() > MAX_LINE_BYTES {
+            return Err(ParamError(format!(
+                "{source} line {}: the line is longer than {MAX_LINE_BYTES} bytes",
+                n + 1
+            )));
+        }
+    }
+    Ok(text)
+}
+
+/// The lines of the text file `path` (read through [`open`], at most `max_bytes`), as
+/// [`BufRead::lines`] gives them (line ends removed) but each at most [`MAX_LINE_BYTES`] long:
+/// a longer line is an error at once, never a growing allocation.
+///
+/// # Errors
+/// When the file cannot be opened or is not a regular file; each line is an error when it
+/// cannot be read, the file is too long, the line is too long or not UTF-8.
+pub fn read_lines(
+    path: &Path,
+    max_bytes: u64,
+) -> std::io::Result<impl Iterator<Item = std::io::Result<String>>> {
+    let mut input = std::io::BufReader::new(open(path, max_bytes)?);
+    let mut buf = Vec::new();
+    let mut failed = false;
+    Ok(std::iter::from_fn(move || {
+        if failed {
+            return None;
+        }
+        buf.clear();
+        let line = match (&mut input)
+            .take(MAX_LINE_BYTES as u64 + 2)
+            .read_until(b'\n', &mut buf)
+        {
+            Ok(0) => return None,
+            Ok(_) => {
+                if buf.last() == Some(&b'\n') {
+                    buf.pop();
+                    if buf.last() == Some(&b'\r') {
+                        buf.pop();
+                    }
+                }
+                if buf.len() > MAX_LINE_BYTES {
+                    Err(std::io::Error::new(
+                        std::io::ErrorKind::InvalidData,
+                        format!("a line is longer than {MAX_LINE_BYTES} bytes"),
+                    ))
+                } else {
+                    String::from_utf8(std::mem::take(&mut buf)).map_err(|_| {
+                        std::io::Error::new(
+                            std::io::ErrorKind::InvalidData,
+                            "a line is not UTF-8 text",
+                        )
+                    })
+                }
+            }
+            Err(e) => Err(e),
+        };
+        failed = line.is_err();
+        Some(line)
+    }))
+}
 
 /// The longest line read, in bytes (a line of two numbers needs far less; the limit keeps a
 /// stream without newlines from growing a line without end).
@@ -106,7 +316,12 @@ impl Lines<'_> {
             {
                 Ok(0) => return None,
                 Ok(_) => {}
-                Err(e) => return Some(Err(ParamError(format!("cannot read stdin: {e}")))),
+                Err(e) => {
+                    return Some(Err(ParamError(format!(
+                        "{}: cannot read: {e}",
+                        self.source
+                    ))));
+                }
             }
             if self.buf.len() > MAX_LINE_BYTES {
                 return Some(Err(

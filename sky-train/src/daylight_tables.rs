@@ -19,10 +19,10 @@
 //! the optical depth.
 
 use std::fmt::Write as _;
-use std::io::{BufRead, BufReader, Write as _};
+use std::io::Write as _;
 use std::path::Path;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 
 use crate::image_io::write_atomically;
 use crate::physical::constituents::{EARTH_RADIUS_M, N_WAVELENGTHS as NW, wavelength_nm};
@@ -91,11 +91,11 @@ pub struct DiffuseSample {
 ///
 /// # Errors
 /// When an atmosphere cannot be built or cached.
-pub fn sample(cache_dir: &Path, progress: bool) -> Result<Vec<DiffuseSample>> {
+pub fn sample(cache_dir: &cache::CacheDir, progress: bool) -> Result<Vec<DiffuseSample>> {
     let elevations = elevation_nodes();
     let mut out = Vec::with_capacity(AOD_NODES.len() * elevations.len());
     for aod in AOD_NODES {
-        let atm = cache::load_or_build(
+        let atm = cache::load_or_build_in(
             &atmosphere(aod),
             &Resolution::default(),
             Some(cache_dir),
@@ -112,6 +112,9 @@ pub fn sample(cache_dir: &Path, progress: bool) -> Result<Vec<DiffuseSample>> {
     }
     Ok(out)
 }
+
+/// The longest `--data` file read: the grid's rows take some 70 bytes each.
+pub const MAX_DATA_BYTES: u64 = 1 << 20;
 
 const HEADER: &str = "aod,sun_elevation_deg,x_lux,y_lux,z_lux,melanopic_edi_lux";
 
@@ -151,16 +154,18 @@ pub fn read_samples(path: &Path) -> Result<Vec<DiffuseSample>> {
     use crate::args::ParamError;
     let bad =
         |line: usize, what: String| ParamError(format!("{}: line {line}: {what}", path.display()));
-    let file =
-        std::fs::File::open(path).with_context(|| format!("cannot read {}", path.display()))?;
+    // Bad input (exit 2): missing, not a regular file, longer than the grid can be, a line
+    // longer than the reader takes.
+    let input = crate::csv_input::read_lines(path, MAX_DATA_BYTES)
+        .map_err(|e| ParamError(format!("cannot read {}: {e}", path.display())))?;
     let elevations = elevation_nodes();
     let mut expected = AOD_NODES
         .iter()
         .flat_map(|&a| elevations.iter().map(move |&h| (a, h)));
     let mut out = Vec::new();
     let mut lines = 0;
-    for (n, line) in BufReader::new(file).lines().enumerate() {
-        let line = line.with_context(|| format!("cannot read {}", path.display()))?;
+    for (n, line) in input.enumerate() {
+        let line = line.map_err(|e| bad(n + 1, e.to_string()))?;
         lines = n + 1;
         if n == 0 {
             if line.trim() != HEADER {

@@ -169,9 +169,7 @@ pub fn write_weights<const H: usize>(path: &Path, weights: &NeuralWeights<H>) ->
 pub fn read_weights<const H: usize>(path: &Path) -> Result<NeuralWeights<H>> {
     use std::io::Read;
     let needed = NeuralWeights::<H>::ENCODED_LEN;
-    let file =
-        std::fs::File::open(path).with_context(|| format!("cannot read {}", path.display()))?;
-    if let Ok(len) = file.metadata().map(|m| m.len())
+    if let Ok(len) = std::fs::metadata(path).map(|m| m.len())
         && len > needed as u64
     {
         bail!(
@@ -179,11 +177,12 @@ pub fn read_weights<const H: usize>(path: &Path) -> Result<NeuralWeights<H>> {
             path.display()
         );
     }
-    // At most one byte more than a file of this shape (a device or a growing file reports no
-    // length), so that a longer file is never read whole.
+    // The bounded reader: a regular file, read to at most one byte more than a file of this
+    // shape (a growing file is stopped), so that a longer file is never read whole.
+    let mut file = crate::csv_input::open(path, needed as u64)
+        .with_context(|| format!("cannot read {}", path.display()))?;
     let mut bytes = Vec::new();
-    file.take(needed as u64 + 1)
-        .read_to_end(&mut bytes)
+    file.read_to_end(&mut bytes)
         .with_context(|| format!("cannot read {}", path.display()))?;
     NeuralWeights::decode(&bytes).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
 }

@@ -1,6 +1,5 @@
 //! Images in and out: OpenEXR (linear float RGB) and PNG (sRGB-encoded), written atomically.
 
-use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::Path;
 
@@ -29,32 +28,7 @@ impl RgbImage {
     }
 }
 
-/// Writes a file through `write` into a temporary file beside `path`, then renames it into
-/// place: readers see the old file or the complete new one, never a partial one.
-///
-/// # Errors
-/// Any I/O error, with the path in its context; the temporary file is removed on failure.
-pub fn write_atomically(path: &Path, write: impl FnOnce(&mut File) -> Result<()>) -> Result<()> {
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(".sky-train-");
-    // Temporary files are private (0600); the finished file gets the usual 0644 (less umask).
-    #[cfg(unix)]
-    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
-    let mut tmp = builder
-        .tempfile_in(dir)
-        .with_context(|| format!("cannot create a temporary file in {}", dir.display()))?;
-    write(tmp.as_file_mut()).with_context(|| format!("cannot write {}", path.display()))?;
-    tmp.as_file()
-        .sync_all()
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    tmp.persist(path)
-        .with_context(|| format!("cannot move the finished file to {}", path.display()))?;
-    Ok(())
-}
+pub use crate::output_path::write_atomically;
 
 /// The image formats `--out` accepts, by extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -99,11 +73,23 @@ pub fn write_exr(path: &Path, img: &RgbImage) -> Result<()> {
     });
     let image = Image::from_channels((img.width, img.height), channels);
     write_atomically(path, |file| {
-        image
-            .write()
-            .non_parallel()
-            .to_buffered(BufWriter::new(file))
-            .context("OpenEXR encoding failed")
+        // The encoder seeks back to write its offset tables: a FIFO or a device written
+        // directly gets the whole file encoded in memory first.
+        if file.metadata()?.is_file() {
+            image
+                .write()
+                .non_parallel()
+                .to_buffered(BufWriter::new(file))
+                .context("OpenEXR encoding failed")
+        } else {
+            let mut bytes = std::io::Cursor::new(Vec::new());
+            image
+                .write()
+                .non_parallel()
+                .to_buffered(&mut bytes)
+                .context("OpenEXR encoding failed")?;
+            Ok(file.write_all(bytes.get_ref())?)
+        }
     })
 }
 
@@ -158,6 +144,11 @@ fn encode_8bit(linear: f32) -> u8 {
 /// is checked from the header before anything of the image is allocated.
 pub const MAX_IMAGE_PIXELS: usize = 8192 * 4096;
 
+/// The longest image file read (an OpenEXR frame, a capture mask): the largest image
+/// ([`MAX_IMAGE_PIXELS`]) as four uncompressed 32-bit channels (512 MiB), and 64 MiB for
+/// headers and offset tables.
+pub const MAX_IMAGE_FILE_BYTES: u64 = MAX_IMAGE_PIXELS as u64 * 16 + (64 << 20);
+
 /// Checks that an image of `width` × `height` pixels is at most [`MAX_IMAGE_PIXELS`].
 ///
 /// # Errors
@@ -182,7 +173,8 @@ pub fn check_image_size(width: usize, height: usize) -> Result<()> {
 /// # Errors
 /// When the file cannot be read, is not OpenEXR, is too large, or lacks R, G or B.
 pub fn read_exr(path: &Path) -> Result<RgbImage> {
-    let file = File::open(path).with_context(|| format!("cannot open {}", path.display()))?;
+    let file = crate::csv_input::open(path, MAX_IMAGE_FILE_BYTES)
+        .with_context(|| format!("cannot open {}", path.display()))?;
     read_exr_from(std::io::BufReader::new(file))
         .with_context(|| format!("cannot read OpenEXR file {}", path.display()))
 }
@@ -217,25 +209,15 @@ pub fn read_exr_from(mut reader: impl std::io::Read + std::io::Seek + Send) -> R
     Ok(image.layer_data.channel_data.pixels)
 }
 
-/// Reads the text file `path` of at most `max_bytes` bytes (the limit is checked while
-/// reading, so a device or a growing file cannot make it read without end).
+/// Reads the text file `path` of at most `max_bytes` bytes through the bounded reader
+/// ([`crate::csv_input::read_text`]: a regular file, lines of at most 4096 bytes).
 ///
 /// # Errors
-/// When the file cannot be read, is longer, or is not UTF-8; the message names the file.
+/// When the file cannot be read, is not a regular file, is longer, has a longer line or is
+/// not UTF-8; the message names the file.
 pub fn read_text(path: &Path, max_bytes: u64) -> Result<String> {
-    use std::io::Read;
-    let file = File::open(path).with_context(|| format!("cannot read {}", path.display()))?;
-    let mut text = String::new();
-    file.take(max_bytes + 1)
-        .read_to_string(&mut text)
-        .with_context(|| format!("cannot read {} as UTF-8 text", path.display()))?;
-    if text.len() as u64 > max_bytes {
-        bail!(
-            "{}: longer than {max_bytes} bytes, the largest file of its kind read",
-            path.display()
-        );
-    }
-    Ok(text)
+    let source = format!("cannot read {}", path.display());
+    Ok(crate::csv_input::read_text(path, &source, max_bytes)?)
 }
 
 /// Writes `text` to `path` atomically.

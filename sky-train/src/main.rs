@@ -8,6 +8,9 @@ use sky_train::args::ParamError;
 use sky_train::cli::{self, Cli};
 
 fn main() -> ExitCode {
+    // A write cut short by Ctrl-C or a kill leaves no hidden temporary file behind (when the
+    // handlers cannot be installed, the next run's sweep removes what a signal left).
+    let _ = sky_train::output_path::remove_temporaries_on_signals();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) if !e.use_stderr() => {

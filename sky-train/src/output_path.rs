@@ -4,13 +4,284 @@
 //! training or a precomputation.
 //!
 //! Whether a folder takes new files is found out by creating and removing a temporary file in
-//! it, as the atomic write will ([`crate::image_io::write_atomically`]): permissions, read-only
-//! mounts, ACLs and a full inode table all show, as they would at the end.
+//! it, as the atomic write will ([`write_atomically`]): permissions, read-only mounts, ACLs and
+//! a full inode table all show, as they would at the end.
+//!
+//! # The atomic write
+//!
+//! [`write_atomically`] writes into a hidden temporary file `.sky-train-XXXXXX` (six random
+//! letters and digits) beside the output, then renames it into place, so that readers see the
+//! old file or the whole new one, never a part. What is at the output path decides how:
+//!
+//! - nothing, or a regular file: the atomic write. A replaced file keeps its permission bits
+//!   (a mode-600 file stays private, an executable stays executable) and, where the process
+//!   may set them (as root), its owner and group. A file with other hard links is replaced by
+//!   a new file at this name: the other names keep the old contents (the rename cannot keep a
+//!   link, and writing in place would lose the atomicity).
+//! - a symbolic link: followed (links to links too); the new file is made beside the link's
+//!   final target and renamed over it, so the link stays and points at the new contents.
+//! - a character or block device or a FIFO: written directly, never replaced (`--out
+//!   /dev/null` discards the output, `--out /dev/stdout` prints it, a FIFO's reader gets it);
+//!   an OpenEXR file, whose encoder seeks, is encoded in memory first.
+//! - a socket: refused, naming the flag (it cannot be opened as a file).
+//!
+//! A temporary file is removed when the write fails, and on SIGINT, SIGTERM or SIGHUP during
+//! the write ([`remove_temporaries_on_signals`], called by the binary at its start, then the
+//! process ends by the signal as it would have). One left by a process killed outright
+//! (SIGKILL, a power cut) is removed by the next run that writes in the same folder: a regular
+//! file whose name is exactly `.sky-train-` and six letters or digits, last modified before
+//! that run started, and not locked by a live writer (each writer holds an exclusive `flock`
+//! on its temporary file).
 
+use std::collections::HashSet;
+use std::fs::File;
 use std::io::ErrorKind;
 use std::path::{Path, PathBuf};
+use std::sync::{Mutex, OnceLock, PoisonError};
+use std::time::SystemTime;
+
+use anyhow::{Context, Result, bail};
 
 use crate::args::ParamError;
+
+/// The prefix of the atomic write's temporary files; six random letters and digits follow.
+pub const TEMPORARY_PREFIX: &str = ".sky-train-";
+
+/// The most symbolic links followed from an output path (as the kernel's `ELOOP` limit).
+const MAX_LINKS: usize = 40;
+
+/// Where a write to `path` lands: `path` with its symbolic links followed to the final
+/// target (which need not exist: a dangling link's target is created).
+///
+/// # Errors
+/// A link that cannot be read, or more than 40 links in a row.
+pub fn resolve(path: &Path) -> std::io::Result<PathBuf> {
+    let mut p = path.to_path_buf();
+    for _ in 0..MAX_LINKS {
+        match std::fs::symlink_metadata(&p) {
+            Ok(m) if m.file_type().is_symlink() => {
+                let target = std::fs::read_link(&p)?;
+                p = if target.is_absolute() {
+                    target
+                } else {
+                    parent(&p).join(target)
+                };
+            }
+            _ => return Ok(p),
+        }
+    }
+    Err(std::io::Error::other(format!(
+        "more than {MAX_LINKS} symbolic links in a row"
+    )))
+}
+
+/// The temporary files being written now, removed by the signal handler.
+static TEMPORARIES: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// When this run started (set by [`remove_temporaries_on_signals`]); the sweep of leftover
+/// temporary files only runs once it is set.
+static RUN_START: OnceLock<SystemTime> = OnceLock::new();
+
+/// The folders already swept in this run.
+static SWEPT: Mutex<Option<HashSet<PathBuf>>> = Mutex::new(None);
+
+/// Notes the run's start and installs handlers of SIGINT, SIGTERM and SIGHUP that remove the
+/// atomic write's temporary files being written, then end the process by the same signal (as
+/// its default action would have: the exit status still says which signal). Called once by
+/// the binary at its start.
+///
+/// # Errors
+/// When the handlers cannot be installed.
+pub fn remove_temporaries_on_signals() -> std::io::Result<()> {
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    let _ = RUN_START.set(SystemTime::now());
+    let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP])?;
+    std::thread::Builder::new()
+        .name("signal cleanup".into())
+        .spawn(move || {
+            if let Some(signal) = signals.forever().next() {
+                // Held until the end: no new temporary file is made meanwhile.
+                let temporaries = TEMPORARIES.lock().unwrap_or_else(PoisonError::into_inner);
+                for t in temporaries.iter() {
+                    let _ = std::fs::remove_file(t);
+                }
+                let _ = signal_hook::low_level::emulate_default_handler(signal);
+                // Only reached for a signal whose default action does not end the process.
+                std::process::exit(128 + signal);
+            }
+        })?;
+    Ok(())
+}
+
+/// Whether `name` is one of the atomic write's temporary files: `.sky-train-` and exactly
+/// six ASCII letters or digits.
+fn is_temporary_name(name: &std::ffi::OsStr) -> bool {
+    name.to_str()
+        .and_then(|n| n.strip_prefix(TEMPORARY_PREFIX))
+        .is_some_and(|rest| rest.len() == 6 && rest.bytes().all(|b| b.is_ascii_alphanumeric()))
+}
+
+/// Removes from `dir` the temporary files that an earlier run left (see the module docs),
+/// once per folder and run; nothing before the run's start is known.
+pub fn sweep_temporaries(dir: &Path) {
+    let Some(&start) = RUN_START.get() else {
+        return;
+    };
+    {
+        let mut swept = SWEPT.lock().unwrap_or_else(PoisonError::into_inner);
+        if !swept
+            .get_or_insert_with(HashSet::new)
+            .insert(dir.to_path_buf())
+        {
+            return;
+        }
+    }
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        if !is_temporary_name(&entry.file_name()) {
+            continue;
+        }
+        let path = entry.path();
+        let old = std::fs::symlink_metadata(&path)
+            .is_ok_and(|m| m.is_file() && m.modified().is_ok_and(|t| t < start));
+        // A live writer holds an exclusive lock on its file.
+        let unlocked = || {
+            File::open(&path).is_ok_and(|f| {
+                rustix::fs::flock(&f, rustix::fs::FlockOperation::NonBlockingLockExclusive).is_ok()
+            })
+        };
+        if old && unlocked() {
+            let _ = std::fs::remove_file(&path);
+        }
+    }
+}
+
+/// A temporary file beside the output: removed when dropped before it is persisted, and on the
+/// signals of [`remove_temporaries_on_signals`] meanwhile.
+struct Temporary {
+    /// The file, until it is persisted.
+    file: Option<tempfile::NamedTempFile>,
+    /// Its path, as registered.
+    path: PathBuf,
+}
+
+impl Temporary {
+    /// A new temporary file in `dir`, registered for removal on a signal and locked against
+    /// another run's sweep.
+    fn new(dir: &Path) -> std::io::Result<Self> {
+        let mut builder = tempfile::Builder::new();
+        builder.prefix(TEMPORARY_PREFIX);
+        // Temporary files are private (0600); the finished file gets the usual 0644 (less
+        // umask), or the replaced file's mode.
+        builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
+        let mut temporaries = TEMPORARIES.lock().unwrap_or_else(PoisonError::into_inner);
+        let file = builder.tempfile_in(dir)?;
+        let path = file.path().to_path_buf();
+        temporaries.push(path.clone());
+        drop(temporaries);
+        let tmp = Self {
+            file: Some(file),
+            path,
+        };
+        rustix::fs::flock(tmp.file(), rustix::fs::FlockOperation::LockExclusive)?;
+        Ok(tmp)
+    }
+
+    /// The open file.
+    fn file(&self) -> &File {
+        self.file
+            .as_ref()
+            .map_or_else(|| unreachable!("persisted"), |f| f.as_file())
+    }
+
+    /// Renames the file to `target` (on failure it is removed when `self` drops).
+    fn persist(mut self, target: &Path) -> std::io::Result<()> {
+        match self.file.take() {
+            Some(f) => f.persist(target).map(drop).map_err(|e| e.error),
+            None => Ok(()),
+        }
+    }
+}
+
+impl Drop for Temporary {
+    fn drop(&mut self) {
+        // Removed first (when not persisted), then forgotten.
+        drop(self.file.take());
+        let mut temporaries = TEMPORARIES.lock().unwrap_or_else(PoisonError::into_inner);
+        temporaries.retain(|t| *t != self.path);
+    }
+}
+
+/// Writes a file through `write` to `path` as the module docs say: atomically (a temporary
+/// file beside it, then a rename) for a new or regular file, keeping a replaced file's mode;
+/// through a symbolic link to its target; directly to a device or FIFO.
+///
+/// # Errors
+/// Any I/O error, with the path in its context; a socket; the temporary file is removed on
+/// failure.
+pub fn write_atomically(path: &Path, write: impl FnOnce(&mut File) -> Result<()>) -> Result<()> {
+    // What the path names, links followed by the kernel (which also follows the magic links
+    // of /proc: `/dev/stdout` to a pipe is no path that `resolve` could name).
+    let existing = match std::fs::metadata(path) {
+        Ok(m) => Some(m),
+        Err(e) if e.kind() == ErrorKind::NotFound => None,
+        Err(e) => return Err(e).with_context(|| format!("cannot write {}", path.display())),
+    };
+    if let Some(m) = &existing
+        && !m.is_file()
+    {
+        return write_directly(path, m, write);
+    }
+    let target =
+        resolve(path).with_context(|| format!("cannot follow the link {}", path.display()))?;
+    let dir = parent(&target);
+    sweep_temporaries(&dir);
+    let tmp = Temporary::new(&dir)
+        .with_context(|| format!("cannot create a temporary file in {}", dir.display()))?;
+    if let Some(m) = &existing {
+        use std::os::unix::fs::MetadataExt;
+        let file = tmp.file();
+        // The owner first: changing it may clear set-user-ID bits that the mode then restores.
+        let _ = std::os::unix::fs::fchown(file, Some(m.uid()), Some(m.gid()));
+        file.set_permissions(m.permissions())
+            .with_context(|| format!("cannot keep the mode of {}", path.display()))?;
+    }
+    let mut file = tmp.file().try_clone()?;
+    write(&mut file).with_context(|| format!("cannot write {}", path.display()))?;
+    file.sync_all()
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    tmp.persist(&target)
+        .with_context(|| format!("cannot move the finished file to {}", path.display()))?;
+    Ok(())
+}
+
+/// Writes through `write` to the device or FIFO at `path` (links followed), in place.
+fn write_directly(
+    path: &Path,
+    meta: &std::fs::Metadata,
+    write: impl FnOnce(&mut File) -> Result<()>,
+) -> Result<()> {
+    use std::os::unix::fs::FileTypeExt;
+    let kind = meta.file_type();
+    if kind.is_dir() {
+        bail!("{}: is a folder, not a file", path.display());
+    }
+    if kind.is_socket() {
+        bail!(
+            "{}: is a socket, which cannot be written as a file",
+            path.display()
+        );
+    }
+    let mut file = File::options()
+        .write(true)
+        .open(path)
+        .with_context(|| format!("cannot open {} for writing", path.display()))?;
+    write(&mut file).with_context(|| format!("cannot write {}", path.display()))?;
+    std::io::Write::flush(&mut file).with_context(|| format!("cannot write {}", path.display()))?;
+    Ok(())
+}
 
 /// Where a file's folder comes from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -28,13 +299,29 @@ pub enum Folder {
 /// # Errors
 /// A [`ParamError`] naming `flag`, the path and what is wrong.
 pub fn file(flag: &str, path: &Path, folder: Folder) -> Result<(), ParamError> {
+    use std::os::unix::fs::FileTypeExt;
     if path.is_dir() {
         return Err(ParamError(format!(
             "{flag} {}: is a folder, not a file",
             path.display()
         )));
     }
-    let parent = parent(path);
+    if let Ok(m) = std::fs::metadata(path)
+        && !m.is_file()
+    {
+        // A device or a FIFO is written directly, with no temporary file.
+        if m.file_type().is_socket() {
+            return Err(ParamError(format!(
+                "{flag} {}: is a socket, which cannot be written as a file",
+                path.display()
+            )));
+        }
+        return Ok(());
+    }
+    let target =
+        resolve(path).map_err(|e| ParamError(format!("{flag} {}: {e}", path.display())))?;
+    let parent = parent(&target);
+    sweep_temporaries(&parent);
     match folder {
         Folder::Existing if !parent.exists() => Err(ParamError(format!(
             "{flag} {}: the folder {} does not exist",
@@ -141,8 +428,38 @@ mod tests {
         assert!(folder("--out", &dir.path().join("new/deeper")).is_ok());
         assert!(!dir.path().join("new").exists(), "nothing created");
         assert!(file_ending("--out", &dir.path().join("s.PNG"), &["png"]).is_ok());
+        // A link is checked where it points: at a folder, refused; at a new file, taken.
+        let to_dir = dir.path().join("to-dir.png");
+        std::os::unix::fs::symlink(dir.path().join("new"), &to_dir).expect("link");
+        std::fs::create_dir(dir.path().join("new")).expect("folder");
+        assert!(
+            message(file("--out", &to_dir, Folder::Existing)).ends_with("is a folder, not a file")
+        );
+        std::fs::remove_dir(dir.path().join("new")).expect("removed");
+        assert_eq!(resolve(&to_dir).expect("resolved"), dir.path().join("new"));
+        std::fs::remove_file(&to_dir).expect("removed");
         // The probe leaves nothing behind.
         let left: Vec<_> = std::fs::read_dir(dir.path()).expect("dir").collect();
         assert_eq!(left.len(), 1, "{left:?}");
+    }
+
+    #[test]
+    fn only_our_temporary_names_count() {
+        for (name, ours) in [
+            (".sky-train-Ab12Cd", true),
+            (".sky-train-000000", true),
+            (".sky-train-Ab12C", false),
+            (".sky-train-Ab12Cde", false),
+            (".sky-train-check-Ab12Cd", false),
+            (".sky-train-cache", false),
+            (".sky-train-Ab-2Cd", false),
+            ("x.sky-train-Ab12Cd", false),
+        ] {
+            assert_eq!(
+                is_temporary_name(std::ffi::OsStr::new(name)),
+                ours,
+                "{name}"
+            );
+        }
     }
 }

@@ -44,7 +44,7 @@ impl SkyMask {
     /// # Errors
     /// When the file cannot be read or is not a PNG (the message names the file).
     pub fn read(path: &Path) -> Result<Self> {
-        let file = std::fs::File::open(path)
+        let file = crate::csv_input::open(path, crate::image_io::MAX_IMAGE_FILE_BYTES)
             .with_context(|| format!("mask {}: cannot open", path.display()))?;
         // The png crate's own limit (64 MiB of decoded bytes by default) would refuse the mask
         // of a frame of the largest size; the size is checked from the header instead.

@@ -86,13 +86,18 @@ pub fn run(args: &DaylightSkyArgs, output: &mut dyn Write) -> Result<()> {
     if let Some(out) = &args.out {
         crate::args::check_output("--out", out, "skyn")?;
     }
-    let dir = args.cache_dir.clone().unwrap_or_else(cache::default_dir);
+    let dir = cache::CacheDir::new(args.cache_dir.as_deref());
     let atmospheres = AOD_NODES
         .iter()
         .map(|&aod| {
             Ok((
                 aod,
-                cache::load_or_build(&atmosphere(aod), &Resolution::default(), Some(&dir), true)?,
+                cache::load_or_build_in(
+                    &atmosphere(aod),
+                    &Resolution::default(),
+                    Some(&dir),
+                    true,
+                )?,
             ))
         })
         .collect::<Result<Vec<_>>>()?;

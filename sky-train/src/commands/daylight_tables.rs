@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Args;
 
-use crate::args::{ParamError, check_output};
+use crate::args::check_output;
 use crate::daylight_tables as tables;
 use crate::image_io::write_atomically;
 use crate::physical::cache;
@@ -35,18 +35,12 @@ pub struct DaylightTablesArgs {
 /// Samples (with `--sample`) and writes the tables, reporting on `output`.
 ///
 /// # Errors
-/// Bad paths as a [`ParamError`]; a data file that is not the sampled grid; a failed write.
+/// Bad paths as a [`crate::args::ParamError`]; a data file that is not the sampled grid; a failed write.
 pub fn run(args: &DaylightTablesArgs, output: &mut dyn Write) -> Result<()> {
     check_output("--data", &args.data, "csv")?;
     check_output("--out", &args.out, "rs")?;
     if args.sample {
-        let dir = args.cache_dir.clone().unwrap_or_else(cache::default_dir);
-        std::fs::create_dir_all(&dir).map_err(|e| {
-            ParamError(format!(
-                "--cache-dir {}: cannot create the folder ({e})",
-                dir.display()
-            ))
-        })?;
+        let dir = cache::CacheDir::new(args.cache_dir.as_deref());
         let samples = tables::sample(&dir, true)?;
         tables::write_samples(&args.data, &samples)?;
         writeln!(

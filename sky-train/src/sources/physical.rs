@@ -95,18 +95,14 @@ impl PhysicalOptions {
         turbidity: Option<f64>,
     ) -> Result<Arc<crate::physical::PhysicalAtmosphere>, ParamError> {
         let atm = self.atmosphere(turbidity)?;
-        let dir = self.cache_dir.clone().unwrap_or_else(cache::default_dir);
-        // The precomputed atmosphere is written there after a minute's work.
-        crate::output_path::folder("--cache-dir", &dir)?;
-        std::fs::create_dir_all(&dir).map_err(|e| {
-            ParamError(format!(
-                "--cache-dir {}: cannot create the folder ({e}); set --cache-dir or ${}",
-                dir.display(),
-                cache::CACHE_ENV
-            ))
-        })?;
-        cache::load_or_build(&atm, &Resolution::default(), Some(&dir), true)
-            .map_err(|e| ParamError(format!("--cache-dir {}: {e:#}", dir.display())))
+        let dir = cache::CacheDir::new(self.cache_dir.as_deref());
+        // The folder is checked before the precomputation, only when it must be written.
+        cache::load_or_build_in(&atm, &Resolution::default(), Some(&dir), true).map_err(|e| {
+            match e.downcast::<ParamError>() {
+                Ok(bad) => bad,
+                Err(e) => ParamError(format!("{}: {e:#}", dir.shown())),
+            }
+        })
     }
 }
 

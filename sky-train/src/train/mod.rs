@@ -709,11 +709,22 @@ pub mod checkpoint {
         // The header, then one parameter a line as `{:e}` writes an f64 (at most 24 bytes).
         let limit = 256 + 32 * Net::param_count(sizes) as u64;
         let mut text = String::new();
-        std::fs::File::open(path)?
-            .take(limit + 1)
-            .read_to_string(&mut text)?;
-        if text.len() as u64 > limit {
-            bail!("longer than a checkpoint of a {sizes:?} network ({limit} bytes at most)");
+        crate::csv_input::open(path, limit)
+            .and_then(|mut f| f.read_to_string(&mut text))
+            .map_err(|e| {
+                anyhow::anyhow!(
+                    "{e} (a checkpoint of a {sizes:?} network has {limit} bytes at most)"
+                )
+            })?;
+        if let Some(n) = text
+            .lines()
+            .position(|l| l.len() > crate::csv_input::MAX_LINE_BYTES)
+        {
+            bail!(
+                "line {}: longer than {} bytes",
+                n + 1,
+                crate::csv_input::MAX_LINE_BYTES
+            );
         }
         let mut lines = text.lines().peekable();
         let version = match lines.next() {
