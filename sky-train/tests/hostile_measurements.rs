@@ -235,7 +235,7 @@ fn a_folder_of_measurements_is_named() {
             path(dir.path()),
         ],
         "",
-        &[path(dir.path()), "a directory"],
+        &[path(dir.path()), "is a folder"],
         &["stdin"],
     );
     assert_eq!(code, 2);
@@ -310,7 +310,7 @@ fn a_long_file_of_blank_lines_names_the_limit() {
             path(&file),
         ],
         "",
-        &["blank.csv", "longer than 67108864 bytes"],
+        &["blank.csv", "more than 64 MiB"],
         &["empty"],
     );
     assert_eq!(code, 2);
