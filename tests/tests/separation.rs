@@ -109,6 +109,55 @@ fn midc(name: &'static str, file: &str, site: Site) -> Station {
     }
 }
 
+/// University of Oregon SRML daily file (Eugene, EUPO): day of year and HHMM (PST, UTC−8, the
+/// end of the minute) then value-flag pairs of the elements of the header: 1000 GHI, 2010 DNI,
+/// 2011 DNI (a second instrument), 7008; flag 99 missing. There is no diffuse sensor: the
+/// measured diffuse is the closure GHI − DNI cos Z (the sun's geometric zenith at mid-minute).
+fn srml(name: &'static str, file: &str, site: Site) -> Station {
+    let text = data(file);
+    let year: i32 = text
+        .lines()
+        .next()
+        .and_then(|l| l.split_whitespace().nth(1))
+        .and_then(|v| v.parse().ok())
+        .expect("year in the header");
+    let minutes = text
+        .lines()
+        .skip(1)
+        .filter_map(|l| {
+            let f: Vec<f64> = l
+                .split_whitespace()
+                .map(|v| v.parse().expect("number"))
+                .collect();
+            if f[3] == 99.0 || f[5] == 99.0 {
+                return None;
+            }
+            let hhmm = f[1] as u32;
+            // The minute's start, PST to UTC.
+            let start = (hhmm / 100) * 60 + hhmm % 100 - 1 + 8 * 60;
+            // 16:00 PST is 00:00 UTC of the next day (the file stays within one year).
+            let (doy, start) = (f[0] as u32 + start / 1440, start % 1440);
+            let (month, day) = month_day(year, doy);
+            let time = (year, month, day, start / 60, start % 60);
+            let at = UtcTime::new(year, month, day, start / 60, start % 60, 30.0).expect("time");
+            let zenith = sky_core::solar::SunPosition::new(&at, &site)
+                .expect("sun")
+                .zenith_deg();
+            let (ghi, dni) = (f[2], f[4]);
+            Some(Minute {
+                time,
+                ghi,
+                dhi: ghi - dni.max(0.0) * zenith.to_radians().cos().max(0.0),
+            })
+        })
+        .collect();
+    Station {
+        name,
+        site,
+        minutes,
+    }
+}
+
 fn month_day(year: i32, doy: u32) -> (u32, u32) {
     let leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
     let lengths = [
@@ -137,12 +186,12 @@ fn month_day(year: i32, doy: u32) -> (u32, u32) {
 
 /// The stations with the median clear-sky index of the default clear sky on their clear
 /// minutes that issue 24 reports (pvlib's detect_clearsky, sun above 5°): 1.36 at Alamosa,
-/// 1.09 at UAT.
-fn stations() -> Vec<(Station, f64)> {
+/// 1.09 at UAT; none for the overcast day.
+fn stations() -> Vec<(Station, Option<f64>)> {
     vec![
         (
             surfrad("SURFRAD Alamosa 2016-01-01", "surfrad-slv16001-day.dat"),
-            1.36,
+            Some(1.36),
         ),
         (
             midc(
@@ -150,7 +199,15 @@ fn stations() -> Vec<(Station, f64)> {
                 "midc-uat-raw-20181018-day.txt",
                 Site::new(32.22969, -110.95534, 786.0).expect("site"),
             ),
-            1.09,
+            Some(1.09),
+        ),
+        (
+            srml(
+                "SRML Eugene 2018-01-01",
+                "srml-eupo-20180101-day.txt",
+                Site::new(44.0467, -123.0743, 150.0).expect("site"),
+            ),
+            None,
         ),
     ]
 }
@@ -234,17 +291,18 @@ const MODELS: [(&str, Decomposition); 3] = [
 ];
 
 /// Prints bias and RMS per station and model (docs/weather.md). The issue's clear-day bounds
-/// (|bias| ≤ 15 %, RMS ≤ 35 %) hold for none of the models on these two days (docs/weather.md
-/// states it); what is asserted is what the figures show and the choices rest on: with the
-/// controller's clear sky Erbs has the smallest RMS at both stations (so it stays the default),
-/// and Engerer2's error falls when its clear sky is the site's measured level (it needs item 1's
-/// site clear sky).
+/// (|bias| ≤ 15 %, RMS ≤ 35 %) hold for none of the models on the two clear days
+/// (docs/weather.md states it); what is asserted is what the figures show and the choices rest
+/// on: on the clear days, with the controller's clear sky, Erbs has the smallest RMS (so it
+/// stays the default), and Engerer2's error falls when its clear sky is the site's measured
+/// level (it needs item 1's site clear sky); on the overcast day every model meets the issue's
+/// RMS ≤ 25 %.
 #[test]
 fn split_of_measured_ghi_against_measured_dhi() {
     for (station, index) in &stations() {
         let mut rms_default = Vec::new();
         for (name, model) in MODELS {
-            for scale in [None, Some(*index)] {
+            for scale in std::iter::once(None).chain(index.map(Some)) {
                 if scale.is_some() && model == Decomposition::Erbs {
                     continue;
                 }
@@ -270,12 +328,22 @@ fn split_of_measured_ghi_against_measured_dhi() {
                 }
             }
         }
-        assert!(
-            rms_default[0] < rms_default[1] && rms_default[0] < rms_default[2],
-            "{}: Erbs is no longer the best with the default clear sky: {rms_default:?}; revisit \
-             Decomposition::default and docs/weather.md",
-            station.name
-        );
+        if index.is_some() {
+            // A clear day: Erbs is the closest with the controller's clear sky.
+            assert!(
+                rms_default[0] < rms_default[1] && rms_default[0] < rms_default[2],
+                "{}: Erbs is no longer the best with the default clear sky: {rms_default:?}; \
+                 revisit Decomposition::default and docs/weather.md",
+                station.name
+            );
+        } else {
+            // The overcast day: the issue's bound, RMS ≤ 25 %, for every model.
+            assert!(
+                rms_default.iter().all(|&r| r <= 0.25),
+                "{}: {rms_default:?}",
+                station.name
+            );
+        }
     }
 }
 
@@ -415,4 +483,104 @@ fn clear_sky_irradiance_is_the_clear_sky_through_the_efficacy() {
     let lux = back.weather.expect("measured").global_illuminance;
     let rel = (f64::from(lux) / f64::from(clear.daylight.global().y) - 1.0).abs();
     assert!(rel < 1e-3, "{lux} lx against {}", clear.daylight.global().y);
+}
+
+/// Runs a `sky-train` command line: stdout, or the error's text and whether it is a parameter
+/// error (exit status 2).
+fn run(args: &[&str]) -> Result<String, (String, bool)> {
+    use clap::Parser as _;
+    use sky_train::cli::{self, Cli};
+    let cli = Cli::try_parse_from(std::iter::once("sky-train").chain(args.iter().copied()))
+        .map_err(|e| (e.to_string(), true))?;
+    let mut output = Vec::new();
+    cli::execute(cli.command, &mut std::io::empty(), &mut output)
+        .map_err(|e| (format!("{e:#}"), e.is::<sky_train::sources::ParamError>()))?;
+    Ok(String::from_utf8(output).expect("UTF-8"))
+}
+
+/// `schedule --decomposition` splits a GHI-only file by the model named, as the controller's
+/// step with that setting does; an unknown model is a parameter error naming the flag.
+#[test]
+fn schedule_decomposition_flag_selects_the_model() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let file = dir.path().join("ghi.csv");
+    let readings = [
+        ("2018-10-18T15:00:00Z", 300.0f32),
+        ("2018-10-18T19:00:00Z", 760.0),
+        ("2018-10-18T21:30:00Z", 180.0),
+    ];
+    let mut csv = String::from("utc,ghi_wm2\n");
+    for (t, g) in readings {
+        csv.push_str(&format!("{t},{g}\n"));
+    }
+    std::fs::write(&file, csv).expect("write");
+    let path = file.to_str().expect("UTF-8 path");
+    let site = Site::new(32.23, -110.96, 786.0).expect("site");
+    let lamp = example_luminaire().expect("lamp");
+    let mut columns = Vec::new();
+    for (name, model) in MODELS {
+        let out = run(&[
+            "schedule",
+            "--lat",
+            "32.23",
+            "--lon",
+            "-110.96",
+            "--elevation",
+            "786",
+            "--measurements",
+            path,
+            "--decomposition",
+            name,
+        ])
+        .unwrap_or_else(|(e, _)| panic!("{name}: {e}"));
+        let mut lines = out.lines();
+        let header: Vec<&str> = lines.next().expect("header").split(',').collect();
+        let at = header
+            .iter()
+            .position(|&h| h == "dhi_wm2")
+            .expect("dhi_wm2 column");
+        let dhi: Vec<f64> = lines
+            .map(|l| l.split(',').nth(at).expect("dhi").parse().expect("number"))
+            .collect();
+        assert_eq!(dhi.len(), readings.len());
+        let settings = Settings {
+            sun: SunAlgorithm::Spa,
+            decomposition: model,
+            ..Settings::default()
+        };
+        for ((&(t, g), &d), hour) in readings.iter().zip(&dhi).zip([(15, 0), (19, 0), (21, 30)]) {
+            let time = UtcTime::new(2018, 10, 18, hour.0, hour.1, 0.0).expect("time");
+            let s = step(
+                &time,
+                &site,
+                &settings,
+                &lamp,
+                Some(Measurement::GlobalIrradiance(g)),
+            )
+            .expect("step");
+            let want = f64::from(s.weather.expect("measured").diffuse_irradiance);
+            assert!(
+                (d - want).abs() <= 1e-3 * want.max(1.0),
+                "{name} at {t}: {d} against {want}"
+            );
+        }
+        columns.push(dhi);
+    }
+    assert!(
+        columns[0] != columns[1] && columns[1] != columns[2],
+        "{columns:?}"
+    );
+    let (e, param) = run(&[
+        "schedule",
+        "--lat",
+        "32.23",
+        "--lon",
+        "-110.96",
+        "--measurements",
+        path,
+        "--decomposition",
+        "disc",
+    ])
+    .expect_err("an unknown model");
+    assert!(param && e.contains("--decomposition"), "{e}");
 }
