@@ -250,8 +250,9 @@ pub fn engerer2_diffuse_fraction(
 ///
 /// ```
 /// use sky_core::decomposition::{engerer2, ENGERER2_2015};
-/// let clear = engerer2(800.0, 30f32.to_radians(), 1361.0, 820.0, 12.0, &ENGERER2_2015)?;
-/// assert!(clear.diffuse < 0.2 * clear.global && clear.direct_normal > 700.0);
+/// // A reading at the clear sky's level, k_t 0.76: k_d 0.16.
+/// let clear = engerer2(900.0, 30f32.to_radians(), 1361.0, 900.0, 12.0, &ENGERER2_2015)?;
+/// assert!(clear.diffuse < 0.2 * clear.global && clear.direct_normal > 800.0);
 /// let dull = engerer2(100.0, 30f32.to_radians(), 1361.0, 820.0, 12.0, &ENGERER2_2015)?;
 /// assert!(dull.diffuse > 0.9 * dull.global);
 /// # Ok::<(), sky_core::SkyError>(())
