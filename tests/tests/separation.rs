@@ -584,3 +584,69 @@ fn schedule_decomposition_flag_selects_the_model() {
     .expect_err("an unknown model");
     assert!(param && e.contains("--decomposition"), "{e}");
 }
+
+/// Hostile input: `engerer2` and the controller's Engerer2 path never panic; a result has
+/// 0 ≤ diffuse ≤ global and a finite, non-negative beam; NaN, negative clear skies and solar
+/// times outside [0, 24] are errors.
+#[test]
+fn engerer2_is_bounded_on_hostile_input() {
+    let values = [
+        f32::NAN,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        -1.0,
+        0.0,
+        f32::MIN_POSITIVE,
+        1e-30,
+        0.5,
+        50.0,
+        400.0,
+        1200.0,
+        1e6,
+        f32::MAX,
+    ];
+    let zeniths = [f32::NAN, -0.1, 0.0, 0.7, 1.5, 1.52, 1.5707963, 1.6];
+    let times = [f32::NAN, -1.0, 0.0, 6.5, 12.0, 23.99, 24.0, 25.0];
+    for &g in &values {
+        for &c in &values {
+            for &z in &zeniths {
+                for &t in &times {
+                    for k in [&ENGERER2_2015, &ENGERER2_2019_1MIN] {
+                        if let Ok(r) = engerer2(g, z, 1361.0, c, t, k) {
+                            assert!(r.diffuse >= 0.0 && r.diffuse <= r.global, "{g} {c} {z} {t}");
+                            assert!(r.direct_normal.is_finite() && r.direct_normal >= 0.0);
+                            assert!(c >= 0.0 && (0.0..=24.0).contains(&t));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    for &t in &[f32::NAN, f32::INFINITY, -1e30, -5.0, 0.0, 23.999, 1e30] {
+        let ast = apparent_solar_time(t, -110.0, 200);
+        assert!((0.0..24.0).contains(&ast), "{t}: {ast}");
+    }
+    let site = Site::new(-89.0, 179.9, 0.0).expect("site");
+    let lamp = example_luminaire().expect("lamp");
+    for model in [Decomposition::Engerer2, Decomposition::Engerer2Global] {
+        let settings = Settings {
+            decomposition: model,
+            ..Settings::default()
+        };
+        for hour in 0..24 {
+            let time = UtcTime::new(2030, 12, 21, hour, 0, 0.0).expect("time");
+            for &g in &values {
+                if let Ok(s) = step(
+                    &time,
+                    &site,
+                    &settings,
+                    &lamp,
+                    Some(Measurement::GlobalIrradiance(g)),
+                ) {
+                    let w = s.weather.expect("measured");
+                    assert!(w.diffuse_irradiance.is_finite() && w.diffuse_irradiance >= 0.0);
+                }
+            }
+        }
+    }
+}
