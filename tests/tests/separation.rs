@@ -605,7 +605,16 @@ fn engerer2_is_bounded_on_hostile_input() {
         1e6,
         f32::MAX,
     ];
-    let zeniths = [f32::NAN, -0.1, 0.0, 0.7, 1.5, 1.52, 1.5707963, 1.6];
+    let zeniths = [
+        f32::NAN,
+        -0.1,
+        0.0,
+        0.7,
+        1.5,
+        1.52,
+        std::f32::consts::FRAC_PI_2,
+        1.6,
+    ];
     let times = [f32::NAN, -1.0, 0.0, 6.5, 12.0, 23.99, 24.0, 25.0];
     for &g in &values {
         for &c in &values {
