@@ -314,6 +314,7 @@ fn controller_settings() -> controller::Settings {
         light: controller::Light::Global,
         full_scale_lux: CONTROLLER_FULL_SCALE_LUX,
         sun: SunAlgorithm::Fast,
+        decomposition: controller::Decomposition::Erbs,
     }
 }
 

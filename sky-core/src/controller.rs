@@ -8,8 +8,9 @@
 //! [`Measurement`], [`crate::measurement`]) the illuminance is the measured global one and its colour is that of daylight
 //! under cloud ([`crate::overcast`]), from the clear-sky index (measured over clear-sky global
 //! illuminance); the sky type is the Perez sky-clearness bin ([`crate::perez`]), from the diffuse
-//! and direct parts of the measurement, split by Erbs's correlation when only the global is known
-//! ([`crate::decomposition`]), and W/m² become lux by Perez's global efficacy
+//! and direct parts of the measurement, split by a separation model when only the global is known
+//! ([`Settings::decomposition`]: Erbs's correlation by default, or Engerer2 with the step's
+//! clear sky; [`crate::decomposition`]), and W/m² become lux by Perez's global efficacy
 //! ([`crate::efficacy`]).
 //!
 //! The one definition shared by `sky-train schedule` on the host and the controller firmware
@@ -21,6 +22,8 @@ use glam::Vec3;
 use crate::cct::Cct;
 use crate::color::{self, Xyy};
 use crate::daylight::{self, Daylight};
+pub use crate::decomposition::Decomposition;
+use crate::decomposition::{self as split, ENGERER2_2015, ENGERER2_2019_1MIN, Separation};
 use crate::error::SkyError;
 use crate::led::{Channel, Drive, Luminaire};
 pub use crate::measurement::Measurement;
@@ -56,7 +59,7 @@ pub struct Weather {
     /// illuminance over Perez's global efficacy).
     pub global_irradiance: f32,
     /// Diffuse horizontal irradiance, W/m²: the measured diffuse where there is one, else
-    /// Erbs's split of the global ([`crate::measurement`]).
+    /// the split of the global by [`Settings::decomposition`] ([`crate::measurement`]).
     pub diffuse_irradiance: f32,
     /// Direct normal irradiance, W/m², of that split (0 with the sun more than 87° from the
     /// zenith).
@@ -119,16 +122,21 @@ pub struct Settings {
     /// The sun position's algorithm: [`SunAlgorithm::Fast`] (2000-2110) by default,
     /// [`SunAlgorithm::Spa`] for other years or SPA's precision.
     pub sun: SunAlgorithm,
+    /// The separation model that splits a global reading without a diffuse one
+    /// ([`Decomposition`]); Engerer2's clear sky is this step's ([`clear_sky_irradiance`]).
+    pub decomposition: Decomposition,
 }
 
 impl Default for Settings {
-    /// The default atmosphere, the global light, full output at 10,000 lx, the fast sun.
+    /// The default atmosphere, the global light, full output at 10,000 lx, the fast sun, the
+    /// default separation model ([`Decomposition::default`]).
     fn default() -> Self {
         Self {
             aerosol_optical_depth: daylight::DEFAULT_AOD,
             light: Light::Global,
             full_scale_lux: 10_000.0,
             sun: SunAlgorithm::Fast,
+            decomposition: Decomposition::default(),
         }
     }
 }
@@ -169,6 +177,49 @@ pub struct Step {
 /// [`SkyError::OutOfRange`] for `aod` outside [[`daylight::MIN_AOD`], [`daylight::MAX_AOD`]].
 pub fn clear_sky_illuminance(sun: &SunPosition, aod: f32) -> Result<Vec3, SkyError> {
     Ok(Daylight::new(sun.sun(), aod)?.global())
+}
+
+/// The clear sky's global horizontal irradiance, W/m², for a clear-sky global illuminance
+/// `clear_lux` (lx, [`clear_sky_illuminance`]) with the sun at zenith `sun_zenith` (radians) on
+/// day `day_of_year`: that illuminance read as a lux sensor's reading
+/// ([`Measurement::GlobalIlluminance`]: over Perez's global efficacy of the sky condition of its
+/// own Erbs split), so that it meets a measured irradiance through the same efficacy as the
+/// measured light does. 0 with the sun down or an illuminance the reading refuses.
+#[must_use]
+pub fn clear_sky_irradiance(clear_lux: f32, sun_zenith: f32, day_of_year: u32) -> f32 {
+    if sun_zenith > core::f32::consts::FRAC_PI_2 {
+        return 0.0;
+    }
+    Measurement::GlobalIlluminance(clear_lux)
+        .read(sun_zenith, day_of_year)
+        .map_or(0.0, |r| r.global_irradiance)
+}
+
+/// The separation of a global reading at `time`, `site`, with the sun at `sun_zenith`
+/// (radians) and the clear sky's global illuminance `clear_lux`, by `decomposition`.
+fn separation(
+    decomposition: Decomposition,
+    time: &UtcTime,
+    site: &Site,
+    sun_zenith: f32,
+    clear_lux: f32,
+) -> Separation {
+    let coefficients = match decomposition {
+        Decomposition::Erbs => return Separation::Erbs,
+        Decomposition::Engerer2 => ENGERER2_2015,
+        Decomposition::Engerer2Global => ENGERER2_2019_1MIN,
+    };
+    let day = time.day_of_year();
+    #[allow(clippy::cast_precision_loss, clippy::cast_possible_truncation)] // hours, degrees
+    let utc_hours =
+        time.hour() as f32 + time.minute() as f32 / 60.0 + time.second() as f32 / 3600.0;
+    #[allow(clippy::cast_possible_truncation)]
+    let longitude = site.longitude() as f32;
+    Separation::Engerer2 {
+        clear_global: clear_sky_irradiance(clear_lux, sun_zenith, day),
+        solar_time: split::apparent_solar_time(utc_hours, longitude, day),
+        coefficients,
+    }
 }
 
 /// The controller's step at `time` for `site`: the clear-sky daylight ([`Daylight`]) or what
@@ -235,7 +286,8 @@ pub fn step(
         None => (followed, followed_melanopic, None),
         Some(m) => {
             let zenith = sun.sun().zenith();
-            let reading = m.read(zenith, time.day_of_year())?;
+            let separation = separation(settings.decomposition, time, site, zenith, clear.y);
+            let reading = m.read_with(zenith, time.day_of_year(), &separation)?;
             let lux = reading.global_illuminance;
             let index = (clear.y >= MIN_CLEAR_SKY_LUX).then(|| (lux / clear.y).min(f32::MAX));
             // The colour's ratio, continuous at night and 1 for a reading equal to the clear sky.

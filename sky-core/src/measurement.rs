@@ -4,15 +4,18 @@
 //! * W/m² become lux by Perez's global efficacy ([`crate::efficacy`]) with the precipitable
 //!   water [`DEFAULT_PRECIPITABLE_WATER`];
 //! * a global reading alone is split into diffuse and direct by Erbs's correlation
-//!   ([`crate::decomposition`]);
+//!   ([`Measurement::read`]) or another separation model ([`Measurement::read_with`],
+//!   [`crate::decomposition`]);
 //! * a lux reading alone is turned into irradiance by iterating: irradiance = lux / efficacy,
-//!   whose sky condition (from Erbs's split) gives the next efficacy, [`EFFICACY_ITERATIONS`]
+//!   whose sky condition (from the split) gives the next efficacy, [`EFFICACY_ITERATIONS`]
 //!   times from a first efficacy of 110 lm/W (the global efficacy depends on the sky by a few
 //!   per cent, continuously in ε: [`crate::efficacy`]).
 
 use core::f32::consts::FRAC_PI_2;
 
-use crate::decomposition::{self, MAX_BEAM_ZENITH, MAX_CLEARNESS_INDEX, MIN_COS_ZENITH};
+use crate::decomposition::{
+    self, MAX_BEAM_ZENITH, MAX_CLEARNESS_INDEX, MIN_COS_ZENITH, Separation,
+};
 use crate::efficacy::{DEFAULT_PRECIPITABLE_WATER, Efficacy};
 use crate::error::{SkyError, check_range};
 use crate::math;
@@ -67,7 +70,8 @@ pub struct Reading {
     pub global_illuminance: f32,
     /// Global horizontal irradiance, W/m² (measured, or the illuminance over the efficacy).
     pub global_irradiance: f32,
-    /// Diffuse horizontal irradiance, W/m² (measured, or Erbs's split of the global).
+    /// Diffuse horizontal irradiance, W/m² (measured, or the separation model's split of the
+    /// global).
     pub diffuse_irradiance: f32,
     /// Direct normal irradiance, W/m² (0 with the sun more than 87° from the zenith).
     pub direct_normal_irradiance: f32,
@@ -188,6 +192,34 @@ impl Measurement {
     /// # Errors
     /// The bad readings of [`Measurement`].
     pub fn read(self, sun_zenith: f32, day_of_year: u32) -> Result<Reading, SkyError> {
+        self.read_with(sun_zenith, day_of_year, &Separation::Erbs)
+    }
+
+    /// [`Measurement::read`] with a global reading alone split by `separation` (Erbs's
+    /// correlation or Engerer2 with its clear sky and solar time: [`crate::decomposition`]).
+    ///
+    /// ```
+    /// use sky_core::decomposition::{Separation, ENGERER2_2015};
+    /// use sky_core::measurement::Measurement;
+    /// let engerer2 = Separation::Engerer2 {
+    ///     clear_global: 820.0,
+    ///     solar_time: 12.5,
+    ///     coefficients: ENGERER2_2015,
+    /// };
+    /// let r = Measurement::GlobalIrradiance(800.0).read_with(40f32.to_radians(), 172, &engerer2)?;
+    /// assert!(r.diffuse_irradiance < 0.2 * 800.0);
+    /// # Ok::<(), sky_core::SkyError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// The bad readings of [`Measurement`], and a bad clear sky or solar time
+    /// ([`decomposition::engerer2`]).
+    pub fn read_with(
+        self,
+        sun_zenith: f32,
+        day_of_year: u32,
+        separation: &Separation,
+    ) -> Result<Reading, SkyError> {
         let up = sun_zenith <= FRAC_PI_2;
         let z = if up { sun_zenith.max(0.0) } else { FRAC_PI_2 };
         let day = day_of_year;
@@ -202,10 +234,11 @@ impl Measurement {
             }
         };
         let efficacy = |c: &SkyCondition| Efficacy::new(c, z, DEFAULT_PRECIPITABLE_WATER).global;
-        // Global irradiance → (diffuse, direct normal): Erbs's split by day, all diffuse at night.
+        // Global irradiance → (diffuse, direct normal): the separation by day, all diffuse at
+        // night.
         let split = |g: f32| -> Result<(f32, f32), SkyError> {
             if up {
-                let parts = decomposition::erbs(g, z, i0)?;
+                let parts = decomposition::split(separation, g, z, i0)?;
                 Ok((parts.diffuse, parts.direct_normal))
             } else {
                 Ok((check_range("global irradiance [W/m²]", g, 0.0, limit)?, 0.0))

@@ -48,8 +48,8 @@ pub const MEASURED_COLUMNS: &str = "ghi_wm2,dhi_wm2,dni_wm2,global_lux,diffuse_l
 /// The CSV header of `schedule --measurements`. `horizontal_lux`, `x`, `y`, `cct_k`, `duv`,
 /// `melanopic_edi_lux` and the RGBW levels are of the light followed (the measured global or
 /// diffuse light with its colour under cloud); `ghi_wm2` the reading (or a lux reading over
-/// Perez's global efficacy), `dhi_wm2` the file's diffuse where it has one and else Erbs's
-/// split, `dni_wm2` the direct normal of that split; `global_lux`, `diffuse_lux` and
+/// Perez's global efficacy), `dhi_wm2` the file's diffuse where it has one and else the split
+/// of the settings' separation model (Erbs by default, `--decomposition`), `dni_wm2` the direct normal of that split; `global_lux`, `diffuse_lux` and
 /// `direct_lux` (on the horizontal plane) the measured light through Perez's efficacies;
 /// `clear_global_lux` the clear sky's global illuminance, `clear_sky_index` the ratio
 /// `global_lux / clear_global_lux`, empty where the clear sky is below
@@ -69,7 +69,7 @@ pub enum MeasurementFormat {
     /// (UTC), decimal time, sun zenith, then value-and-flag pairs, `dw_solar` (GHI) the first,
     /// `direct_n` the third and `diffuse` the fourth (pvlib's `iotools.read_surfrad` column
     /// list). A row whose GHI is missing (−9999.9) or flagged bad (flag not 0) is skipped; a
-    /// missing or flagged diffuse leaves the GHI alone (split by Erbs).
+    /// missing or flagged diffuse leaves the GHI alone (split by `--decomposition`).
     Surfrad,
     /// An NREL MIDC raw-data CSV file as the network delivers it: a header with `Year`, `DOY`
     /// and, after it, the time column named by the station's standard time zone (`EST`, `CST`,

@@ -15,7 +15,7 @@
 
 use qemu_check::{Decimal, entry, hprintln};
 use sky_core::SkyError;
-use sky_core::controller::{Light, Settings, Step, example_luminaire, step};
+use sky_core::controller::{Decomposition, Light, Settings, Step, example_luminaire, step};
 use sky_core::solar::{Site, SunAlgorithm, UtcTime};
 
 /// One step of the day as the host computed it.
@@ -48,6 +48,7 @@ fn settings() -> Settings {
         light: Light::Global,
         full_scale_lux: FULL_SCALE_LUX,
         sun: SunAlgorithm::Fast,
+        decomposition: Decomposition::Erbs,
     }
 }
 

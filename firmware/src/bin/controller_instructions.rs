@@ -25,7 +25,7 @@ use core::hint::black_box;
 use qemu_check::{entry, hprintln};
 use sky_core::SkyError;
 use sky_core::color::{self, Xyy};
-use sky_core::controller::{Light, Settings, example_luminaire, step};
+use sky_core::controller::{Decomposition, Light, Settings, example_luminaire, step};
 use sky_core::daylight::{self, Daylight};
 use sky_core::solar::{Site, SunAlgorithm, UtcTime, grena};
 
@@ -199,6 +199,7 @@ fn run(counts: &mut [Counts; 6], per_instruction: f64, empty: u64) -> Result<boo
         light: Light::Global,
         full_scale_lux: FULL_SCALE_LUX,
         sun: SunAlgorithm::Fast,
+        decomposition: Decomposition::Erbs,
     };
     let mut same = true;
     for (index, minute) in (0..24 * 60).step_by(STEP_MINUTES as usize).enumerate() {

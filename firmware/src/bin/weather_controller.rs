@@ -15,7 +15,9 @@
 
 use qemu_check::{entry, hprintln};
 use sky_core::SkyError;
-use sky_core::controller::{Light, Measurement, Settings, Step, example_luminaire, step};
+use sky_core::controller::{
+    Decomposition, Light, Measurement, Settings, Step, example_luminaire, step,
+};
 use sky_core::solar::{Site, SunAlgorithm, UtcTime};
 
 /// One step of the day: its reading and what the host computed for it.
@@ -63,6 +65,7 @@ fn settings() -> Settings {
         light: Light::Global,
         full_scale_lux: FULL_SCALE_LUX,
         sun: SunAlgorithm::Fast,
+        decomposition: Decomposition::Erbs,
     }
 }
 

@@ -7,7 +7,7 @@ use anyhow::Result;
 use clap::Args;
 
 use crate::args::{date, elevation, in_range, latitude, longitude};
-use sky_core::controller::{Light, Settings};
+use sky_core::controller::{Decomposition, Light, Settings};
 use sky_core::solar::SunAlgorithm;
 
 use crate::controller::{MeasurementFormat, ScheduleConfig, schedule, schedule_measured};
@@ -31,7 +31,7 @@ pub struct ScheduleArgs {
     /// global as the global; night readings are used. One output row per reading: the sun; the
     /// light followed (cct_k, duv, horizontal_lux, RGBW, x, y, melanopic_edi_lux: the measured
     /// light with its colour under cloud); ghi_wm2, dhi_wm2, dni_wm2 (the reading and its
-    /// split: the file's diffuse, else Erbs's); global_lux, diffuse_lux, direct_lux (the
+    /// split: the file's diffuse, else --decomposition's); global_lux, diffuse_lux, direct_lux (the
     /// measured light through Perez's efficacies); clear_global_lux (the clear sky's);
     /// clear_sky_index (global_lux over clear_global_lux, empty where the clear sky is below
     /// 100 lx, at night); sky_type (the Perez sky-clearness bin, 1 overcast to 8 clear; 0 with
@@ -62,9 +62,27 @@ pub struct ScheduleArgs {
     /// of the global light of sun and sky.
     #[arg(long)]
     pub sky_only: bool,
+    /// The separation model splitting a GHI-only reading into diffuse and direct: erbs (Erbs et
+    /// al. 1982), engerer2 (Engerer 2015's coefficients) or engerer2-global (Engerer2 with
+    /// Bright and Engerer's 2019 world-wide 1-minute coefficients); Engerer2's clear sky is the
+    /// schedule's (--aod) and must fit the site. docs/weather.md compares them with measured
+    /// diffuse irradiance.
+    #[arg(long, value_enum, value_name = "MODEL", default_value_t = DecompositionArg::Erbs)]
+    pub decomposition: DecompositionArg,
     /// Horizontal illuminance in lux at which the luminaire gives its full output (1 to 200000).
     #[arg(long, value_name = "LUX", default_value_t = 10_000.0, value_parser = full_scale_lux)]
     pub full_scale_lux: f32,
+}
+
+/// `--decomposition`.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum DecompositionArg {
+    /// Engerer2, Bright and Engerer's 2019 world-wide 1-minute coefficients.
+    Engerer2Global,
+    /// Engerer2, Engerer 2015's coefficients.
+    Engerer2,
+    /// Erbs et al. 1982.
+    Erbs,
 }
 
 /// `--measurements-format`.
@@ -123,6 +141,11 @@ pub fn run(args: &ScheduleArgs, output: &mut dyn Write) -> Result<()> {
             full_scale_lux: args.full_scale_lux,
             // The CLI takes the years 1-2999.
             sun: SunAlgorithm::Spa,
+            decomposition: match args.decomposition {
+                DecompositionArg::Engerer2Global => Decomposition::Engerer2Global,
+                DecompositionArg::Engerer2 => Decomposition::Engerer2,
+                DecompositionArg::Erbs => Decomposition::Erbs,
+            },
         },
     };
     let mut out = BufWriter::new(output);
