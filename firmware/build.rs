@@ -455,7 +455,12 @@ fn weather_expected_table() -> Result<String, Box<dyn Error>> {
             "    Expected {{ minute: {minute}, kind: {kind}, reading: {a:?}, diffuse: {b:?}, \
              lux: {:?}, cct_k: {:?}, duv: {:?}, sky_type: {}, clear_sky_index: {:?}, \
              levels: {:?}, pwm: {pwm:?} }},",
-            s.illuminance.y, cct_k, duv, w.sky_type, w.clear_sky_index.unwrap_or(-1.0), s.drive.levels,
+            s.illuminance.y,
+            cct_k,
+            duv,
+            w.sky_type,
+            w.clear_sky_index.unwrap_or(-1.0),
+            s.drive.levels,
         )?;
         count += 1;
     }

@@ -71,9 +71,9 @@ fn settings() -> Settings {
 
 /// How many of the step's values differ from the host's in any bit.
 fn differences(got: &Step, pwm: [u16; 4], want: &Expected) -> usize {
-    let (sky_type, index) = got
-        .weather
-        .map_or((u8::MAX, f32::NAN), |w| (w.sky_type, w.clear_sky_index.unwrap_or(-1.0)));
+    let (sky_type, index) = got.weather.map_or((u8::MAX, f32::NAN), |w| {
+        (w.sky_type, w.clear_sky_index.unwrap_or(-1.0))
+    });
     let mut f32s = [(0.0f32, 0.0f32); 8];
     f32s[0] = (got.illuminance.y, want.lux);
     let (cct_k, duv) = cct_or_zero(got);
@@ -127,7 +127,8 @@ fn run() -> Result<(usize, usize), SkyError> {
             got.illuminance.y,
             cct_or_zero(&got).0,
             got.weather.map_or(0, |w| w.sky_type),
-            got.weather.map_or(0.0, |w| w.clear_sky_index.unwrap_or(-1.0)),
+            got.weather
+                .map_or(0.0, |w| w.clear_sky_index.unwrap_or(-1.0)),
             pwm[0],
             pwm[1],
             pwm[2],
