@@ -751,8 +751,11 @@ fn sample_reports_the_sky_and_style_files_work() {
                 .split(',')
                 .map(|v| v.parse().expect("number"))
                 .collect();
+            // The direction as `sample` makes it from its degrees: in f64, rounded once.
+            let (st, ct) = f[0].to_radians().sin_cos();
+            let (sp, cp) = f[1].to_radians().sin_cos();
             #[allow(clippy::cast_possible_truncation)]
-            let d = geom::direction((f[0] as f32).to_radians(), (f[1] as f32).to_radians());
+            let d = Vec3::new((st * cp) as f32, (st * sp) as f32, ct as f32);
             let want = sky.rgb(d);
             let rgb: Vec<f32> = line
                 .split(',')
