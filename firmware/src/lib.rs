@@ -197,7 +197,11 @@ impl Buffer {
         for shift in (0..8).rev() {
             #[allow(clippy::cast_possible_truncation)] // a nibble
             let nibble = ((n >> (4 * shift)) & 0xf) as u8;
-            self.push(&[if nibble < 10 { b'0' + nibble } else { b'a' + nibble - 10 }]);
+            self.push(&[if nibble < 10 {
+                b'0' + nibble
+            } else {
+                b'a' + nibble - 10
+            }]);
         }
     }
 
