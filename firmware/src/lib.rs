@@ -222,7 +222,8 @@ fn halt() -> ! {
 
 /// Reports a panic by where it happened (file and line) and fails. The message is not printed:
 /// formatting it would link the formatting of every panic message in core (the bounds checks'
-/// `usize`s among them) into flash; the location names the check.
+/// `usize`s among them) into flash; the location names the check. (On the Cortex-M0 a panic
+/// never gets here: it is a trap, reported by the HardFault handler; `.cargo/config.toml`.)
 #[panic_handler]
 fn panic(info: &PanicInfo) -> ! {
     match info.location() {
