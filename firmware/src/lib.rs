@@ -45,8 +45,8 @@ pub fn finish_steps(example: &str, outcome: Result<(usize, usize), sky_core::Sky
             let (failures_u32, steps_u32) = (failures as u32, steps as u32);
             hprintln!(
                 "{} of {} steps differ from the host",
-                failures_u32,
-                steps_u32
+                Digits(failures_u32, 1),
+                Digits(steps_u32, 1)
             );
             finish(failures == 0)
         }
@@ -63,8 +63,44 @@ pub struct Message(pub sky_core::SkyError);
 
 impl fmt::Display for Message {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        self.0
-            .write_message(f, &|out, v| write!(out, "{}", Decimal(v, 6)))
+        match self.0 {
+            // The one message with integers (`usize`), printed here by [`Digits`]: through
+            // `write_message` it would link core's integer formatting.
+            sky_core::SkyError::CapacityExceeded {
+                collection,
+                capacity,
+                needed,
+            } => write!(
+                f,
+                "{}: {} needed, but at most {} fit (fixed capacity, no allocation)",
+                collection,
+                Digits::of_usize(needed),
+                Digits::of_usize(capacity)
+            ),
+            error => error.write_message(f, &|out, v| write!(out, "{}", Decimal(v, 6))),
+        }
+    }
+}
+
+/// `Digits(n, width)`: an unsigned integer in decimal with leading zeros to at least `width`
+/// digits (at most 10), by the same digit loop as [`Decimal`]: core's integer formatting (its
+/// digit-pair table and `pad_integral`) is never linked. The formatter's width and alignment
+/// apply to the whole number (`{:>4}` right-aligns; plain `{:4}` pads on the right, as for text).
+#[derive(Clone, Copy)]
+pub struct Digits(pub u32, pub usize);
+
+impl Digits {
+    /// A `usize` (saturating at 2³² − 1, which no count here reaches), no leading zeros.
+    pub fn of_usize(n: usize) -> Self {
+        Self(u32::try_from(n).unwrap_or(u32::MAX), 1)
+    }
+}
+
+impl fmt::Display for Digits {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let mut buffer = Buffer::default();
+        buffer.push_digits(self.0, self.1);
+        f.pad(buffer.as_str())
     }
 }
 
@@ -154,6 +190,21 @@ impl Buffer {
         self.push(&digits[start..]);
     }
 
+    /// Appends `n` as `0x` and eight hexadecimal digits.
+    #[cfg(target_arch = "arm")]
+    fn push_hex(&mut self, n: u32) {
+        self.push(b"0x");
+        for shift in (0..8).rev() {
+            #[allow(clippy::cast_possible_truncation)] // a nibble
+            let nibble = ((n >> (4 * shift)) & 0xf) as u8;
+            self.push(&[if nibble < 10 {
+                b'0' + nibble
+            } else {
+                b'a' + nibble - 10
+            }]);
+        }
+    }
+
     fn as_str(&self) -> &str {
         core::str::from_utf8(&self.bytes[..self.len]).unwrap_or("?")
     }
@@ -169,9 +220,16 @@ fn halt() -> ! {
     }
 }
 
+/// Reports a panic by where it happened (file and line) and fails. The message is not printed:
+/// formatting it would link the formatting of every panic message in core (the bounds checks'
+/// `usize`s among them) into flash; the location names the check. (On the Cortex-M0 a panic
+/// never gets here: it is a trap, reported by the HardFault handler; `.cargo/config.toml`.)
 #[panic_handler]
 fn panic(info: &PanicInfo) -> ! {
-    heprintln!("panic: {}", info);
+    match info.location() {
+        Some(at) => heprintln!("panic at {}:{}", at.file(), Digits(at.line(), 1)),
+        None => heprintln!("panic"),
+    }
     finish(false)
 }
 
@@ -181,6 +239,8 @@ fn panic(info: &PanicInfo) -> ! {
 #[cfg(target_arch = "arm")]
 #[cortex_m_rt::exception]
 unsafe fn HardFault(frame: &cortex_m_rt::ExceptionFrame) -> ! {
-    heprintln!("hard fault at pc {:#010x}", frame.pc());
+    let mut pc = Buffer::default();
+    pc.push_hex(frame.pc());
+    heprintln!("hard fault at pc {}", pc.as_str());
     finish(false)
 }

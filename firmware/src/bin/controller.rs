@@ -13,7 +13,7 @@
 #![no_std]
 #![no_main]
 
-use qemu_check::{Decimal, entry, hprintln};
+use qemu_check::{Decimal, Digits, entry, hprintln};
 use sky_core::SkyError;
 use sky_core::controller::{Decomposition, Light, Settings, Step, example_luminaire, step};
 use sky_core::solar::{Site, SunAlgorithm, UtcTime};
@@ -87,17 +87,17 @@ fn run() -> Result<(usize, usize), SkyError> {
     let site = Site::new(SITE.0, SITE.1, SITE.2)?;
     let lamp = example_luminaire()?;
     hprintln!(
-        "controller: {:04}-{:02}-{:02} UTC at {} N, {} E, {} m; aerosol optical depth {}; full output at {} lx; \
+        "controller: {}-{}-{} UTC at {} N, {} E, {} m; aerosol optical depth {}; full output at {} lx; \
          {}-bit PWM; every value against the host (bit-identical)",
-        year,
-        month,
-        day,
+        Digits(year.unsigned_abs(), 4),
+        Digits(month, 2),
+        Digits(day, 2),
         Decimal(SITE.0 as f32, 2),
         Decimal(SITE.1 as f32, 2),
         Decimal(SITE.2 as f32, 0),
         Decimal(AOD, 3),
         Decimal(FULL_SCALE_LUX, 0),
-        u32::from(PWM_BITS)
+        Digits(u32::from(PWM_BITS), 1)
     );
     hprintln!("utc    elev_deg  cct_k     duv       lux            R    G    B    W   check");
     let mut failures = 0;
@@ -109,17 +109,17 @@ fn run() -> Result<(usize, usize), SkyError> {
         let pwm = got.drive.quantise(PWM_BITS)?;
         let differ = differences(&got, pwm, want);
         hprintln!(
-            "{:02}:{:02}  {:>7}  {:>8}  {:>8}  {:>13}  {:4} {:4} {:4} {:4}  {}",
-            hour,
-            minute,
+            "{}:{}  {:>7}  {:>8}  {:>8}  {:>13}  {:>4} {:>4} {:>4} {:>4}  {}",
+            Digits(hour, 2),
+            Digits(minute, 2),
             Decimal(got.sun.elevation_deg() as f32, 2),
             Decimal(cct_or_zero(&got).0, 1),
             Decimal(cct_or_zero(&got).1, 5),
             Decimal(got.illuminance.y, 5),
-            u32::from(pwm[0]),
-            u32::from(pwm[1]),
-            u32::from(pwm[2]),
-            u32::from(pwm[3]),
+            Digits(u32::from(pwm[0]), 1),
+            Digits(u32::from(pwm[1]), 1),
+            Digits(u32::from(pwm[2]), 1),
+            Digits(u32::from(pwm[3]), 1),
             if differ == 0 { "ok" } else { "FAIL" }
         );
         failures += usize::from(differ != 0);
