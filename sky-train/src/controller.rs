@@ -3,12 +3,11 @@
 //! measurements) and `sky-train cct` (CCT and Duv of chromaticities), both through sky-core, so
 //! the firmware computes the same values.
 
-use std::io::{BufRead, Write};
+use std::io::Write;
 
 use anyhow::{Context, Result};
 use std::path::Path;
 
-use sky_core::cct;
 use sky_core::controller::{Measurement, Settings, Step, example_luminaire, step};
 use sky_core::solar::{Site, UtcTime};
 
@@ -574,33 +573,6 @@ pub fn schedule(config: &ScheduleConfig, output: &mut dyn Write) -> Result<()> {
             row_fields(&s)
         )?;
         minute += config.step_minutes;
-    }
-    Ok(())
-}
-
-/// Reads `x,y` lines ([`crate::csv_input`]: a header line `x,y` is allowed, blank lines are
-/// skipped) and writes `x,y,cct_k,duv`, a line at a time.
-///
-/// # Errors
-/// A line that is not two finite numbers, or a chromaticity without a CCT, named by its line
-/// number.
-pub fn cct_lines(input: &mut dyn BufRead, output: &mut dyn Write) -> Result<()> {
-    writeln!(output, "x,y,cct_k,duv")?;
-    for row in crate::csv_input::rows(input, ["x", "y"]) {
-        let row = row?;
-        #[allow(clippy::cast_possible_truncation)] // sky-core's chromaticities are f32
-        let [x, y] = row.values.map(|v| v as f32);
-        let c = cct::cct_duv(x, y).map_err(|e| {
-            ParamError(format!(
-                "stdin line {}: {} (x in [0, 1], y in (0, 1], CCT between {} and {} K)",
-                row.line,
-                crate::args::describe(e, str::to_owned, " = "),
-                cct::MIN_CCT,
-                cct::MAX_CCT
-            ))
-        })?;
-        let [xs, ys] = &row.text;
-        writeln!(output, "{xs},{ys},{:.3},{:.7}", c.kelvin, c.duv)?;
     }
     Ok(())
 }

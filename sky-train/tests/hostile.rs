@@ -2,77 +2,12 @@
 //! binary as a user would, under a 1 GiB address-space limit (`prlimit --as`) so that an
 //! allocation beyond what a command states it needs fails the test instead of the machine.
 
+mod common;
+
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Command;
 
-/// The address space the binary may use: the largest frame (384 MiB) and its working arrays
-/// fit; the 1.5 GiB and 24 GiB frames the cases' headers claim do not.
-const ADDRESS_SPACE: &str = "--as=1073741824";
-
-/// Starts `sky-train args` under [`ADDRESS_SPACE`], its stdin, stdout and stderr piped.
-fn spawn(args: &[&str]) -> std::process::Child {
-    Command::new("prlimit")
-        .arg(ADDRESS_SPACE)
-        .arg(env!("CARGO_BIN_EXE_sky-train"))
-        .args(args)
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("prlimit and sky-train run")
-}
-
-/// Runs `sky-train args` with `stdin` under [`ADDRESS_SPACE`].
-fn sky_train(args: &[&str], stdin: &str) -> Output {
-    use std::io::Write;
-    let mut child = spawn(args);
-    // A command that refuses its arguments may end before it reads stdin.
-    let written = child
-        .stdin
-        .take()
-        .expect("stdin")
-        .write_all(stdin.as_bytes());
-    if let Err(e) = written {
-        assert_eq!(e.kind(), std::io::ErrorKind::BrokenPipe, "stdin written");
-    }
-    child.wait_with_output().expect("sky-train ends")
-}
-
-/// Asserts `args` succeed; returns stdout.
-fn succeeds(args: &[&str], stdin: &str) -> String {
-    let out = sky_train(args, stdin);
-    assert!(
-        out.status.success(),
-        "{args:?}: {:?} {}",
-        out.status,
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).expect("UTF-8")
-}
-
-/// Asserts that `args` fail with an exit status (not a signal: no abort, no panic) and one
-/// stderr line holding every `needle`; returns the status.
-fn fails(args: &[&str], stdin: &str, needles: &[&str]) -> i32 {
-    let out = sky_train(args, stdin);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    let code = out
-        .status
-        .code()
-        .unwrap_or_else(|| panic!("{args:?} was killed ({:?}): {stderr}", out.status));
-    assert!(code != 0 && code != 101, "{args:?}: exit {code}: {stderr}");
-    assert_eq!(stderr.trim_end().lines().count(), 1, "{args:?}: `{stderr}`");
-    for needle in needles {
-        assert!(
-            stderr.contains(needle),
-            "{args:?}: `{stderr}` lacks `{needle}`"
-        );
-    }
-    code
-}
-
-fn path(p: &Path) -> &str {
-    p.to_str().expect("UTF-8 path")
-}
+use common::{fails, path, sky_train, spawn, strs, succeeds};
 
 /// A synthesized capture sequence of `frames` frames `width` wide in `dir`.
 fn synthesize(dir: &Path, width: usize, frames: usize) {
@@ -364,11 +299,6 @@ fn diverged_training_keeps_the_good_weights() {
         fails(&args, "", &[needle]);
         assert_eq!(std::fs::read(&out).expect("weights"), good, "{value}");
     }
-}
-
-/// `args` as the `&str`s [`sky_train`] takes.
-fn strs(args: &[String]) -> Vec<&str> {
-    args.iter().map(String::as_str).collect()
 }
 
 /// The shipped Preetham weight file with its 32-byte source name replaced by `name` (NUL

@@ -2,81 +2,16 @@
 //! run through the `sky-train` binary as a user would, under the 1 GiB address-space limit of
 //! `hostile.rs` (its helpers are copied here).
 
+mod common;
+
 use std::io::{BufRead, BufReader, Read, Write};
-use std::path::Path;
-use std::process::{Command, Output, Stdio};
+use std::process::Stdio;
 
-/// The address space the binary may use (as `hostile.rs`).
-const ADDRESS_SPACE: &str = "--as=1073741824";
-
-/// `sky-train args` under [`ADDRESS_SPACE`], stdin and stderr piped, stdout as given.
-fn command(args: &[&str], stdout: Stdio) -> Command {
-    let mut c = Command::new("prlimit");
-    c.arg(ADDRESS_SPACE)
-        .arg(env!("CARGO_BIN_EXE_sky-train"))
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(stdout)
-        .stderr(Stdio::piped());
-    c
-}
-
-/// Runs `sky-train args` with `stdin` under [`ADDRESS_SPACE`].
-fn sky_train(args: &[&str], stdin: &str) -> Output {
-    let mut child = command(args, Stdio::piped())
-        .spawn()
-        .expect("prlimit and sky-train run");
-    // A command that refuses its arguments may end before it reads stdin.
-    let written = child
-        .stdin
-        .take()
-        .expect("stdin")
-        .write_all(stdin.as_bytes());
-    if let Err(e) = written {
-        assert_eq!(e.kind(), std::io::ErrorKind::BrokenPipe, "stdin written");
-    }
-    child.wait_with_output().expect("sky-train ends")
-}
-
-/// Asserts `args` succeed; returns stdout.
-fn succeeds(args: &[&str], stdin: &str) -> String {
-    let out = sky_train(args, stdin);
-    assert!(
-        out.status.success(),
-        "{args:?}: {:?} {}",
-        out.status,
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).expect("UTF-8")
-}
-
-/// Asserts that `args` fail with an exit status (not a signal: no abort, no panic) and one
-/// stderr line holding every `needle`; returns the status.
-fn fails(args: &[&str], stdin: &str, needles: &[&str]) -> i32 {
-    let out = sky_train(args, stdin);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    let code = out
-        .status
-        .code()
-        .unwrap_or_else(|| panic!("{args:?} was killed ({:?}): {stderr}", out.status));
-    assert!(code != 0 && code != 101, "{args:?}: exit {code}: {stderr}");
-    assert_eq!(stderr.trim_end().lines().count(), 1, "{args:?}: `{stderr}`");
-    for needle in needles {
-        assert!(
-            stderr.contains(needle),
-            "{args:?}: `{stderr}` lacks `{needle}`"
-        );
-    }
-    code
-}
+use common::{command, fails, path, sky_train, succeeds};
 
 /// Asserts `args` fail as bad input (exit status 2), naming every `needle`; returns stderr.
 fn refused(args: &[&str], stdin: &str, needles: &[&str]) {
     assert_eq!(fails(args, stdin, needles), 2, "{args:?}");
-}
-
-fn path(p: &Path) -> &str {
-    p.to_str().expect("UTF-8 path")
 }
 
 /// The CSV rows of `text` after its header, split into fields.

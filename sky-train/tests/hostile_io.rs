@@ -14,20 +14,15 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant, SystemTime};
 
+mod common;
+
 use sky_train::physical::cache;
 use sky_train::physical::{Atmosphere, Resolution};
 
-/// The address space the binary may use (as `hostile.rs`).
-const ADDRESS_SPACE: &str = "--as=1073741824";
+use common::{ADDRESS_SPACE, binary, path, strs};
 
 /// The longest a command of these cases may take once the atmosphere is cached.
 const TIME_LIMIT: Duration = Duration::from_secs(120);
-
-/// The binary under test: this build's, or `$SKY_TRAIN_UNDER_TEST`.
-fn binary() -> std::ffi::OsString {
-    std::env::var_os("SKY_TRAIN_UNDER_TEST")
-        .unwrap_or_else(|| env!("CARGO_BIN_EXE_sky-train").into())
-}
 
 /// `sky-train args` under [`ADDRESS_SPACE`], with `env` set, its stdin, stdout and stderr
 /// piped; `user` runs it as that uid and gid (`setpriv`).
@@ -126,10 +121,6 @@ fn fails(args: &[&str], stdin: &str, code: i32, needles: &[&str]) {
     check_failure(args, &run(args, stdin), code, needles);
 }
 
-fn path(p: &Path) -> &str {
-    p.to_str().expect("UTF-8 path")
-}
-
 /// A temporary folder others may enter (for the case run as another user).
 fn tempdir() -> tempfile::TempDir {
     let dir = tempfile::tempdir().expect("temp dir");
@@ -169,10 +160,6 @@ fn render(out: &Path) -> Vec<String> {
     ]
     .map(String::from)
     .to_vec()
-}
-
-fn strs(v: &[String]) -> Vec<&str> {
-    v.iter().map(String::as_str).collect()
 }
 
 /// The first bytes of a PNG and of an OpenEXR file.

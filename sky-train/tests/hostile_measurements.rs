@@ -3,77 +3,20 @@
 //! a 1 GiB address-space limit (`prlimit --as`). The spawn and assertion helpers are those of
 //! `hostile.rs`.
 
+mod common;
+
 use std::path::Path;
-use std::process::{Command, Output};
 
-/// The address space the binary may use.
-const ADDRESS_SPACE: &str = "--as=1073741824";
-
-/// Starts `sky-train args` under [`ADDRESS_SPACE`], its stdin, stdout and stderr piped.
-fn spawn(args: &[&str]) -> std::process::Child {
-    Command::new("prlimit")
-        .arg(ADDRESS_SPACE)
-        .arg(env!("CARGO_BIN_EXE_sky-train"))
-        .args(args)
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("prlimit and sky-train run")
-}
-
-/// Runs `sky-train args` with `stdin` under [`ADDRESS_SPACE`].
-fn sky_train(args: &[&str], stdin: &str) -> Output {
-    use std::io::Write;
-    let mut child = spawn(args);
-    let written = child
-        .stdin
-        .take()
-        .expect("stdin")
-        .write_all(stdin.as_bytes());
-    if let Err(e) = written {
-        assert_eq!(e.kind(), std::io::ErrorKind::BrokenPipe, "stdin written");
-    }
-    child.wait_with_output().expect("sky-train ends")
-}
-
-/// Asserts `args` succeed; returns stdout.
-fn succeeds(args: &[&str], stdin: &str) -> String {
-    let out = sky_train(args, stdin);
-    assert!(
-        out.status.success(),
-        "{args:?}: {:?} {}",
-        out.status,
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).expect("UTF-8")
-}
+use common::{failure, path, sky_train, strs, succeeds};
 
 /// Asserts that `args` fail with an exit status (not a signal) and one stderr line holding
 /// every `needle` and none of `absent`; returns the status.
 fn fails(args: &[&str], stdin: &str, needles: &[&str], absent: &[&str]) -> i32 {
-    let out = sky_train(args, stdin);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    let code = out
-        .status
-        .code()
-        .unwrap_or_else(|| panic!("{args:?} was killed ({:?}): {stderr}", out.status));
-    assert!(code != 0 && code != 101, "{args:?}: exit {code}: {stderr}");
-    assert_eq!(stderr.trim_end().lines().count(), 1, "{args:?}: `{stderr}`");
-    for needle in needles {
-        assert!(
-            stderr.contains(needle),
-            "{args:?}: `{stderr}` lacks `{needle}`"
-        );
-    }
+    let (code, stderr) = failure(args, &sky_train(args, stdin), needles);
     for word in absent {
         assert!(!stderr.contains(word), "{args:?}: `{stderr}` has `{word}`");
     }
     code
-}
-
-fn path(p: &Path) -> &str {
-    p.to_str().expect("UTF-8 path")
 }
 
 /// `schedule --measurements` of `text` (written to a file in `dir`) at Boulder.
@@ -92,10 +35,6 @@ fn schedule_args(dir: &Path, name: &str, text: &str) -> Vec<String> {
     .map(|s| (*s).to_owned())
     .chain([path(&file).to_owned()])
     .collect()
-}
-
-fn strs(v: &[String]) -> Vec<&str> {
-    v.iter().map(String::as_str).collect()
 }
 
 /// `sample --model perez` with the sun 30° from the zenith and `flags`, one view.
