@@ -101,15 +101,7 @@ pub fn clearness_index(global: f32, sun_zenith: f32, extraterrestrial: f32) -> f
 /// [`MAX_CLEARNESS_INDEX`] times the extraterrestrial horizontal irradiance, a sun zenith outside
 /// [0, π/2] or an extraterrestrial irradiance outside [1000, 1500] W/m².
 pub fn erbs(global: f32, sun_zenith: f32, extraterrestrial: f32) -> Result<Components, SkyError> {
-    let z = check_range("sun zenith [rad]", sun_zenith, 0.0, FRAC_PI_2)?;
-    let i0 = check_range(
-        "extraterrestrial irradiance [W/m²]",
-        extraterrestrial,
-        1000.0,
-        1500.0,
-    )?;
-    let limit = MAX_CLEARNESS_INDEX * i0 * math::cos(z).max(MIN_COS_ZENITH);
-    let global = check_range("global irradiance [W/m²]", global, 0.0, limit)?;
+    let (global, z, i0) = checked(global, sun_zenith, extraterrestrial)?;
     let kt = clearness_index(global, z, i0).min(1.0);
     // Above 87° all of it counts as diffuse, so that diffuse + beam stays the global.
     let (diffuse, direct_normal) = if z > MAX_BEAM_ZENITH {
@@ -124,6 +116,31 @@ pub fn erbs(global: f32, sun_zenith: f32, extraterrestrial: f32) -> Result<Compo
         direct_normal,
         clearness_index: kt,
     })
+}
+
+/// The inputs every separation model takes, checked: the global irradiance (W/m², at most
+/// [`MAX_CLEARNESS_INDEX`] times the extraterrestrial horizontal), the sun zenith (rad) and the
+/// extraterrestrial irradiance (W/m²), returned in that order.
+fn checked(
+    global: f32,
+    sun_zenith: f32,
+    extraterrestrial: f32,
+) -> Result<(f32, f32, f32), SkyError> {
+    let z = check_range("sun zenith [rad]", sun_zenith, 0.0, FRAC_PI_2)?;
+    let i0 = check_range(
+        "extraterrestrial irradiance [W/m²]",
+        extraterrestrial,
+        1000.0,
+        1500.0,
+    )?;
+    let global = check_range("global irradiance [W/m²]", global, 0.0, global_limit(z, i0))?;
+    Ok((global, z, i0))
+}
+
+/// The largest global irradiance taken, W/m²: [`MAX_CLEARNESS_INDEX`] times the
+/// extraterrestrial horizontal irradiance, cos Z at least [`MIN_COS_ZENITH`].
+fn global_limit(z: f32, i0: f32) -> f32 {
+    MAX_CLEARNESS_INDEX * i0 * math::cos(z).max(MIN_COS_ZENITH)
 }
 
 /// The coefficients of the Engerer2 separation model (module docs of [`engerer2`]):
@@ -271,22 +288,14 @@ pub fn engerer2(
     solar_time: f32,
     coefficients: &Engerer2Coefficients,
 ) -> Result<Components, SkyError> {
-    let z = check_range("sun zenith [rad]", sun_zenith, 0.0, FRAC_PI_2)?;
-    let i0 = check_range(
-        "extraterrestrial irradiance [W/m²]",
-        extraterrestrial,
-        1000.0,
-        1500.0,
-    )?;
-    let limit = MAX_CLEARNESS_INDEX * i0 * math::cos(z).max(MIN_COS_ZENITH);
-    let global = check_range("global irradiance [W/m²]", global, 0.0, limit)?;
+    let (global, z, i0) = checked(global, sun_zenith, extraterrestrial)?;
     let clear = check_range(
         "clear-sky global irradiance [W/m²]",
         clear_global,
         0.0,
         f32::MAX,
     )?
-    .min(limit);
+    .min(global_limit(z, i0));
     let ast = check_range("apparent solar time [h]", solar_time, 0.0, 24.0)?;
     let kt = clearness_index(global, z, i0).min(1.0);
     let ktc = clearness_index(clear, z, i0);

@@ -50,24 +50,25 @@ pub fn push_number(out: &mut String, v: f64) {
 /// and below 1e-4.
 #[must_use]
 pub fn compact(v: f64) -> String {
-    let a = v.abs();
-    if v == 0.0 {
-        "0".into()
-    } else if !v.is_finite() || !(1e-4..1e6).contains(&a) {
-        format!("{v:e}")
-    } else {
-        format!("{v}")
-    }
+    compact_of(v)
 }
 
 /// An f32 for a message, as [`compact`] writes an f64: its shortest round-trip decimal, with
 /// an exponent from 1e6 up and below 1e-4 (`3.4028235e38`, not 39 digits).
 #[must_use]
 pub fn compact_f32(v: f32) -> String {
-    let a = v.abs();
-    if v == 0.0 {
+    compact_of(v)
+}
+
+/// [`compact`]'s rule for a float of either width (each prints its own shortest decimal).
+fn compact_of<T>(v: T) -> String
+where
+    T: Copy + Into<f64> + std::fmt::Display + std::fmt::LowerExp,
+{
+    let x: f64 = v.into();
+    if x == 0.0 {
         "0".into()
-    } else if !v.is_finite() || !(1e-4..1e6).contains(&a) {
+    } else if !x.is_finite() || !(1e-4..1e6).contains(&x.abs()) {
         format!("{v:e}")
     } else {
         format!("{v}")
