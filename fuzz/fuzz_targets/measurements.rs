@@ -1,44 +1,56 @@
-//! Any bytes as a measurement file (`schedule --measurements`): rows are finite, non-negative,
-//! in strictly increasing time, the diffuse part not above the global, or the error is one
-//! line naming the file and a line; the schedule driven by the rows never panics.
+//! Any bytes as a measurement file (`schedule --measurements`) in any of its formats (CSV,
+//! SURFRAD, MIDC; the first byte chooses): the rows handed on are finite and in strictly
+//! increasing time, or the error is one line naming the file; the controller step that each
+//! row drives (as `schedule` runs it) never panics, and a step it accepts is finite.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
+use sky_core::controller::{Settings, example_luminaire, step};
 use sky_core::measurement::Measurement;
-use sky_train::controller::{ScheduleConfig, parse_measurements, schedule_measured};
+use sky_core::solar::Site;
+use sky_train::controller::{MeasurementFormat, parse_measurements};
 
 const SOURCE: &str = "--measurements fuzz.csv";
 
 fuzz_target!(|data: &[u8]| {
-    let rows = match parse_measurements(&mut &data[..], SOURCE) {
-        Ok(rows) => rows,
-        Err(e) => {
-            assert!(e.0.starts_with(SOURCE) && !e.0.contains('\n'), "{}", e.0);
-            return;
-        }
+    let Some((&first, text)) = data.split_first() else {
+        return;
     };
-    let valid = |v: f32| v.is_finite() && v >= 0.0;
-    for pair in rows.windows(2) {
-        assert!(pair[0].unix.0 < pair[1].unix.0);
-    }
-    for r in &rows {
+    let format = match first % 3 {
+        0 => MeasurementFormat::Csv,
+        1 => MeasurementFormat::Surfrad,
+        _ => MeasurementFormat::Midc,
+    };
+    let site = Site::new(48.21, 16.37, 0.0).expect("a valid site");
+    let lamp = example_luminaire().expect("the example luminaire");
+    let settings = Settings::default();
+    let mut previous: Option<f64> = None;
+    let parsed = parse_measurements(&mut &text[..], SOURCE, format, &mut |r| {
+        if let Some(t) = previous {
+            assert!(t < r.unix.0, "times not increasing");
+        }
+        previous = Some(r.unix.0);
         match r.measurement {
             Measurement::GlobalIlluminance(v) | Measurement::GlobalIrradiance(v) => {
-                assert!(valid(v));
+                assert!(v.is_finite());
             }
             Measurement::Irradiance { global, diffuse } => {
-                assert!(valid(global) && valid(diffuse) && diffuse <= global);
+                assert!(global.is_finite() && diffuse.is_finite());
             }
         }
+        // The step `schedule` runs for the row: an error (a reading sky-core refuses) or
+        // finite values.
+        if let Ok(s) = step(&r.time, &site, &settings, &lamp, Some(r.measurement)) {
+            assert!(s.illuminance.is_finite() && s.melanopic_edi.is_finite());
+            assert!(s.drive.levels.iter().all(|l| l.is_finite()));
+        }
+        Ok(())
+    });
+    if let Err(e) = parsed {
+        let message = format!("{e:#}");
+        assert!(
+            message.starts_with(SOURCE) && !message.contains('\n'),
+            "{message}"
+        );
     }
-    let config = ScheduleConfig {
-        latitude: 48.21,
-        longitude: 16.37,
-        elevation: 0.0,
-        date: (2026, 6, 21),
-        step_minutes: 10,
-        settings: sky_core::controller::Settings::default(),
-    };
-    let mut out = Vec::new();
-    let _ = schedule_measured(&config, &rows, std::path::Path::new("fuzz.csv"), &mut out);
 });

@@ -26,10 +26,20 @@ fn check(bytes: &[u8], atmosphere: &Atmosphere, resolution: &Resolution) {
     let again = cache::encode(&atm, cache::version_key(atmosphere, resolution));
     assert_eq!(again, bytes, "a decoded cache file re-encodes differently");
     let t = &atm.transmittance;
-    assert!(t.columns.iter().flatten().all(|v| v.is_finite() && *v >= 0.0));
+    assert!(
+        t.columns
+            .iter()
+            .flatten()
+            .all(|v| v.is_finite() && *v >= 0.0)
+    );
     let g = &atm.ground;
     for table in [&g.rayleigh, &g.aerosol, &g.multiple] {
         assert!(table.data.iter().all(|v| v.is_finite() && *v >= 0.0));
     }
-    assert!(g.diffuse.iter().flatten().all(|v| v.is_finite() && *v >= 0.0));
+    assert!(
+        g.diffuse
+            .iter()
+            .flatten()
+            .all(|v| v.is_finite() && *v >= 0.0)
+    );
 }

@@ -15,5 +15,5 @@ fuzz_target!(|data: &[u8]| {
         }
     }
     let mut out = Vec::new();
-    let _ = sky_train::controller::cct_lines(&mut &data[..], &mut out);
+    let _ = sky_train::commands::cct::run(&mut &data[..], &mut out);
 });
