@@ -7,9 +7,10 @@
 #                                 (pkg/ also holds the GPU shaders' module shaders.js and the
 #                                 three.js drop-in three.js; vendor/three/ is the pinned three)
 #   scripts/wasm.sh pack          build, then write the npm package (package.json with the crate's
-#                                 version, the .wasm, JS and TypeScript bindings and their
-#                                 snippets/ (sky-wasm/js/f32-text.js), shaders.js,
-#                                 three.js) to target/wasm/package and `npm pack` it into
+#                                 version and repository, the .wasm, JS and TypeScript bindings
+#                                 and their snippets/ (sky-wasm/js/f32-text.js), node.js (the
+#                                 node entry point), shaders.js, three.js, the README and
+#                                 licences) to target/wasm/package and `npm pack` it into
 #                                 target/wasm/sky-wasm-VERSION.tgz
 #   scripts/wasm.sh serve [PORT]  serve the built site on http://127.0.0.1:PORT/ (default 8000)
 #   scripts/wasm.sh test          build, then three suites:
@@ -116,16 +117,32 @@ build() {
 pack() {
   build
   step "npm package"
-  local version pkg="$out/package"
-  version=$(cd "$root" && cargo metadata --format-version 1 --no-deps --locked |
-    node -e 'let s = ""; process.stdin.on("data", (d) => (s += d)).on("end", () =>
-      console.log(JSON.parse(s).packages.find((p) => p.name === "sky-wasm").version))')
+  local crate pkg="$out/package"
+  # The crate's version and repository (Cargo.toml's [workspace.package]), as JSON.
+  crate=$(cd "$root" && cargo metadata --format-version 1 --no-deps --locked |
+    node -e 'let s = ""; process.stdin.on("data", (d) => (s += d)).on("end", () => {
+      const p = JSON.parse(s).packages.find((p) => p.name === "sky-wasm");
+      console.log(JSON.stringify({ version: p.version, repository: p.repository })); })')
   rm -rf "$pkg" && mkdir -p "$pkg"
   cp -r "$site_default"/pkg/* "$pkg/"
-  cp "$root/sky-wasm/js/README.md" "$pkg/"
+  # The node entry point (the "node" condition: `await init()` reads the .wasm from disk), the
+  # README and the licences the manifest declares ("MIT OR Apache-2.0").
+  cp "$root/sky-wasm/js/node.js" "$root/sky-wasm/js/README.md" "$root/LICENSE-MIT" "$root/LICENSE-APACHE" "$pkg/"
+  cat "$root/sky-wasm/js/symbol-dispose.d.ts" >>"$pkg/sky_wasm.d.ts"
+  # package.json: the template with the crate's version, and the repository, homepage and
+  # issue tracker of the crate's repository.
   node -e 'const fs = require("fs"); const p = JSON.parse(fs.readFileSync(process.argv[1]));
-    p.version = process.argv[2]; fs.writeFileSync(process.argv[3], JSON.stringify(p, null, 2) + "\n");' \
-    "$root/sky-wasm/js/npm-package.json" "$version" "$pkg/package.json"
+    const crate = JSON.parse(process.argv[2]);
+    if (!/^https:\/\/github\.com\/[^/]+\/[^/]+$/.test(crate.repository ?? ""))
+      throw new Error(`Cargo.toml: repository = ${crate.repository}, not https://github.com/OWNER/NAME`);
+    p.version = crate.version;
+    p.repository = { type: "git", url: `git+${crate.repository}.git`, directory: "sky-wasm" };
+    p.homepage = `${crate.repository}#readme`;
+    p.bugs = { url: `${crate.repository}/issues` };
+    fs.writeFileSync(process.argv[3], JSON.stringify(p, null, 2) + "\n");' \
+    "$root/sky-wasm/js/npm-package.json" "$crate" "$pkg/package.json"
+  local version
+  version=$(node -p 'JSON.parse(process.argv[1]).version' "$crate")
   rm -f "$out"/sky-wasm-*.tgz
   (cd "$pkg" && npm pack --pack-destination "$out" --loglevel=error >/dev/null)
   echo "wrote $out/sky-wasm-$version.tgz ($(stat -c %s "$out/sky-wasm-$version.tgz") bytes)"

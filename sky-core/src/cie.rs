@@ -74,7 +74,7 @@ const MIN_COS_ZENITH: f32 = 1e-6;
 /// A CIE standard general sky for one sun position, with an absolute luminance scale.
 ///
 /// **Domain**: types 1-15, sun zenith in [0, π/2]. **Units**: luminance in cd/m².
-/// **Below the horizon** (view z < 0) the luminance is 0. **Colour**: the standard defines
+/// **Below the horizon** (the crate's rule, [`geom::below_horizon`]) the luminance is 0. **Colour**: the standard defines
 /// luminance only; the sky has one chromaticity everywhere ([`D65`] unless set with
 /// [`with_chromaticity`](Self::with_chromaticity)). **Accuracy**: the relative distribution agrees
 /// with an f64 evaluation of the standard's formulas to 1e-5 relative (tests in `tests/`); a sky
@@ -223,7 +223,7 @@ impl CieSky {
         let Some(dir) = dir.try_normalize() else {
             return 0.0;
         };
-        if dir.z < 0.0 {
+        if geom::below_horizon(dir) {
             return 0.0;
         }
         let [a, b, c, d, e] = self.parameters;

@@ -54,6 +54,27 @@ pub fn zenith_azimuth(dir: Vec3) -> (f32, f32) {
     (zenith, azimuth)
 }
 
+/// Views down to this far below the horizon (in z of the unit direction, cos θ, ≈ radians below
+/// it) still count as on the horizon: the f32 nearest π/2 lies 4.4e-8 rad past it, and a view
+/// "at the horizon" should not go dark. The crate's one below-horizon rule (crate docs,
+/// "Conventions") uses it.
+pub const HORIZON_TOLERANCE: f32 = 1e-6;
+
+/// Whether the unit direction `dir` is below the horizon by the crate's one rule (crate docs,
+/// "Conventions"): `dir.z < -HORIZON_TOLERANCE`. Every sky model's radiance is 0 there. A NaN
+/// `z` is not below the horizon (each model documents its value for non-finite input).
+///
+/// ```
+/// use sky_core::geom::{below_horizon, direction};
+/// assert!(below_horizon(direction(100f32.to_radians(), 0.0)));
+/// assert!(!below_horizon(direction(core::f32::consts::FRAC_PI_2, 0.0))); // on it
+/// ```
+#[inline]
+#[must_use]
+pub fn below_horizon(dir: Vec3) -> bool {
+    dir.z < -HORIZON_TOLERANCE
+}
+
 /// The angle between two directions in radians, in `[0, π]`.
 ///
 /// Computed as `atan2(|a × b|, a · b)` (the vector form of Vincenty's formula, seed 002 eq. 26),

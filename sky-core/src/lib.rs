@@ -33,7 +33,15 @@
 //! * **Units**: luminance `Y` in cd/m²; linear sRGB triples are on the same scale (their `Y` is the
 //!   luminance). Chromaticity `x, y` is CIE 1931. The AOAS sky is the exception: its linear RGB
 //!   is in O'Neil's relative units, proportional to the sun's intensity parameter.
-//! * **Below the horizon** the sky models return a documented, finite value (see each model).
+//! * **Below the horizon** every sky model's radiance (and luminance) is **0**: the ground, not
+//!   the sky. One rule decides where that is, for every model, on the CPU (one direction and
+//!   the `*_batch` paths) and in the generated GPU shaders (sky-gpu): a view direction is below
+//!   the horizon when its unit vector's z is below −[`geom::HORIZON_TOLERANCE`] (1e-6, so that
+//!   the f32 nearest π/2 still counts as the horizon); see [`geom::below_horizon`]. This holds
+//!   for [`PreethamSky`], [`NeuralSky`] (and [`neural::FixedNeuralSky`]), [`sh::ShSky`]'s
+//!   radiance, [`AoasSky`] (its viewer's horizon), [`CieSky`], [`PerezSky`] and
+//!   [`daylight::DaylightSky`]. [`sh::ShSky::irradiance`] integrates the coefficients, not the
+//!   evaluated radiance, and is not affected.
 //!
 //! # Models
 //!

@@ -257,7 +257,7 @@ pub fn all_weather_coefficients(condition: &SkyCondition, sun_zenith: f32) -> Pe
 /// horizontal illuminance.
 ///
 /// **Domain**: sun zenith in [0, π/2]; any [`SkyCondition`]. **Units**: luminance in cd/m².
-/// **Below the horizon** (view z < 0) the luminance is 0. **Colour**: one chromaticity everywhere
+/// **Below the horizon** (the crate's rule, [`geom::below_horizon`](crate::geom::below_horizon)) the luminance is 0. **Colour**: one chromaticity everywhere
 /// ([`D65`] unless set with [`with_chromaticity`](Self::with_chromaticity)). **Accuracy**: the
 /// relative distribution agrees with an f64 evaluation of the paper's formulas and table to
 /// 1e-4 relative (of 1 % of the sky's brightest value, where the fitted function cancels to
@@ -397,7 +397,7 @@ impl PerezSky {
         let Some(dir) = dir.try_normalize() else {
             return 0.0;
         };
-        if dir.z < 0.0 {
+        if crate::geom::below_horizon(dir) {
             return 0.0;
         }
         let s = self.sun.direction();

@@ -26,8 +26,9 @@ pub const MAX_TURBIDITY: f32 = 6.0;
 pub const MIN_COS_THETA: f32 = 1e-6;
 
 /// Views down to this far below the horizon (in cos θ, ≈ radians) still count as on the horizon:
-/// the f32 nearest π/2 lies 4.4e-8 rad past it, and a view "at the horizon" should not go dark.
-pub const HORIZON_TOLERANCE: f32 = 1e-6;
+/// [`geom::HORIZON_TOLERANCE`](crate::geom::HORIZON_TOLERANCE), the crate's one below-horizon
+/// rule (crate docs, "Conventions").
+pub const HORIZON_TOLERANCE: f32 = crate::geom::HORIZON_TOLERANCE;
 
 /// The five Perez coefficients A-E of one channel (seed 002, eq. 10).
 #[derive(Debug, Clone, Copy, PartialEq)]

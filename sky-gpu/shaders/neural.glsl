@@ -2,7 +2,7 @@
 //
 // The neural sky of seed 000 (a 6-12-3 network, eqs. 4-7): sky_radiance(dir) is linear
 // sRGB in the units of the training data (cd/m² for the shipped skies) towards the view
-// direction dir (sky-core's frame: +z up; any length).
+// direction dir (sky-core's frame: +z up; any length), 0 below the horizon (sky-core's rule).
 // Parameters (sky-core's NeuralSky::folded): [0].xyz the unit direction towards the sun,
 // [1].xyz the output biases, [2].xyz half the output scales; for each hidden neuron j,
 // [3 + j] its coefficients of v_x, v_y, v_z and d, [3 + 12 + j].xyz its output weights
@@ -22,5 +22,5 @@ vec3 sky_radiance(vec3 dir) {
         float a = 1.0 / (1.0 + h * h);
         z += o.xyz * a;
     }
-    return min(sky_neural[2].xyz * (z * z), vec3(3.4028234663852886e38));
+    return (d.z >= (-1e-6) ? min(sky_neural[2].xyz * (z * z), vec3(3.4028234663852886e38)) : vec3(0.0));
 }

@@ -315,3 +315,77 @@ fn each_description_evaluates_to_sky_cores_values() {
         }
     }
 }
+
+/// sky-core's one below-horizon rule (its crate docs, "Conventions") in every description: the
+/// shader and sky-core both give exactly 0 for directions below the horizon (from 1e-5 below it
+/// to the nadir, every azimuth), and both give the sky's value on it (the f32 nearest π/2,
+/// whose cos θ is −4.4e-8, inside the tolerance).
+#[test]
+fn each_description_is_black_below_the_horizon_as_sky_core() {
+    let sun = Sun::new(1.2, 0.4).expect("valid sun");
+    let below: Vec<Vec3> = [1e-5f32, 1e-3, 0.1, 0.7, 1.0]
+        .iter()
+        .flat_map(|&z| {
+            (0..12).map(move |k| {
+                let phi = core::f32::consts::FRAC_PI_6 * k as f32;
+                let r = (1.0 - z * z).sqrt();
+                Vec3::new(r * phi.cos(), r * phi.sin(), -z)
+            })
+        })
+        .collect();
+    let on: Vec<Vec3> = (0..12)
+        .map(|k| {
+            geom::direction(
+                core::f32::consts::FRAC_PI_2,
+                core::f32::consts::FRAC_PI_6 * k as f32,
+            )
+        })
+        .collect();
+    assert!(on.iter().all(|d| d.z < 0.0 && !geom::below_horizon(*d)));
+    let p = PreethamSky::new(sun, 3.0).expect("valid");
+    let n = NeuralSky::new(&pretrained::HOSEK, sun, 3.0).expect("valid");
+    let s = ShSky::new(sun, 3.0, 7).expect("valid");
+    let a = AoasSky::new(&Scattering::default(), &Preset::Physical.style()).expect("valid");
+    type Case<'a> = (&'a str, Shader, Vec<f32>, &'a dyn Fn(Vec3) -> Vec3);
+    let cases: [Case; 4] = [
+        (
+            "preetham",
+            Model::Preetham.shader(),
+            preetham::params(&p).to_vec(),
+            &|d| p.rgb(d),
+        ),
+        ("neural", Model::Neural.shader(), neural::params(&n), &|d| {
+            n.rgb(d)
+        }),
+        ("sh", Model::Sh.shader(), sh::params(&s).to_vec(), &|d| {
+            s.radiance(d)
+        }),
+        (
+            "aoas",
+            Model::Aoas.shader(),
+            aoas::params(&a).expect("no pattern").to_vec(),
+            &|d| a.rgb(d),
+        ),
+    ];
+    for (name, shader, params, cpu) in &cases {
+        for d in &below {
+            assert_eq!(cpu(*d), Vec3::ZERO, "{name}: sky-core at {d}");
+            assert_eq!(
+                radiance(shader, params, *d),
+                Vec3::ZERO,
+                "{name}: shader at {d}"
+            );
+        }
+        for d in &on {
+            let (want, got) = (cpu(*d), radiance(shader, params, *d));
+            assert!(
+                want.max_element() > 0.0,
+                "{name}: sky-core on the horizon at {d}: {want}"
+            );
+            assert!(
+                got.max_element() > 0.0,
+                "{name}: shader on the horizon at {d}: {got}"
+            );
+        }
+    }
+}

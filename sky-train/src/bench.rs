@@ -26,6 +26,9 @@ pub struct Measurement {
     pub ns_per_direction: f64,
     /// The index (in the same run's results) of the peer its ratio is taken against.
     pub peer: usize,
+    /// A second peer measured in the same run, whose ratio is printed too (the daylight sky's
+    /// lines: the neural 6-12-3 sky on the same instruction set).
+    pub also: Option<usize>,
 }
 
 /// The directions of a `width` × `height` upper-hemisphere grid (seed 000 §IV-C times 1024 × 512
@@ -67,6 +70,7 @@ pub fn run(dirs: &[Vec3], runs: usize) -> Result<Vec<Measurement>> {
     let mut results = Vec::new();
     preetham(dirs, runs, &mut results)?;
     neural(dirs, runs, &mut results)?;
+    daylight(dirs, runs, &mut results)?;
     aoas(dirs, runs, &mut results)?;
     Ok(results)
 }
@@ -93,6 +97,7 @@ fn measure(
         name,
         ns_per_direction: per_direction(t, dirs.len()),
         peer: peer.unwrap_or(index),
+        also: None,
     });
     index
 }
@@ -220,6 +225,68 @@ fn neural(dirs: &[Vec3], runs: usize, results: &mut Vec<Measurement>) -> Result<
             Some(peer),
             &mut |d, o| dispatch::neural_batch(&sky, d, o),
         );
+    }
+    Ok(())
+}
+
+/// The daylight sky (three 6-24-3 networks, two mixed inside the blends) for a sun outside the
+/// blends (50° high) and inside the day-to-dusk one (2° high): one direction a call
+/// (the peer), the portable batch and the AVX2 + FMA kernel, each also against the neural 6-12-3
+/// sky's line for the same instruction set measured just before.
+fn daylight(dirs: &[Vec3], runs: usize, results: &mut Vec<Measurement>) -> Result<()> {
+    use sky_core::daylight::Daylight;
+    let neural = |name: &str| results.iter().position(|m| m.name == name);
+    let peers = [
+        neural("neural 6-12-3 rgb, one direction a call"),
+        neural("neural 6-12-3 rgb_batch (baseline SIMD)"),
+        neural(&format!(
+            "neural 6-12-3 rgb_batch ({})",
+            dispatch::describe()
+        )),
+        neural("neural 6-12-3 rgb_batch_avx2 (AVX2 + FMA)"),
+    ];
+    for (what, zenith) in [("sun 50° up", 40f32), ("sun 2° up, blend", 88.0)] {
+        let sky = Daylight::new(Sun::new(zenith.to_radians(), 0.3)?, 0.2)?.sky();
+        let mut m = |name: String, peer, also, eval: &mut dyn FnMut(&[Vec3], &mut [Vec3])| {
+            let i = measure(results, dirs, 1, runs, name, peer, eval);
+            results[i].also = also;
+            i
+        };
+        let one = m(
+            format!("daylight rgb, one a call, {what}"),
+            None,
+            peers[0],
+            &mut |d, o| {
+                for (o, d) in o.iter_mut().zip(d) {
+                    *o = sky.rgb(black_box(*d));
+                }
+            },
+        );
+        m(
+            format!("daylight rgb_batch (baseline SIMD), {what}"),
+            Some(one),
+            peers[1],
+            &mut |d, o| sky.rgb_batch(d, o),
+        );
+        m(
+            format!("daylight rgb_batch ({}), {what}", dispatch::describe()),
+            Some(one),
+            peers[2],
+            &mut |d, o| {
+                dispatch::fastest(
+                    #[inline(always)]
+                    || sky.rgb_batch(d, o),
+                );
+            },
+        );
+        if dispatch::has_avx2_fma() {
+            m(
+                format!("daylight rgb_batch_avx2 (AVX2+FMA), {what}"),
+                Some(one),
+                peers[3],
+                &mut |d, o| dispatch::daylight_batch(&sky, d, o),
+            );
+        }
     }
     Ok(())
 }
@@ -397,8 +464,19 @@ pub fn report(results: &[Measurement], width: u32, height: u32) -> String {
         } else {
             String::new()
         };
+        // A daylight line: its ratio to the neural 6-12-3 sky too.
+        let also = m
+            .also
+            .and_then(|i| results.get(i))
+            .map_or(String::new(), |n| {
+                format!(
+                    "; {:.2}x vs {}",
+                    n.ns_per_direction / m.ns_per_direction,
+                    n.name
+                )
+            });
         s += &format!(
-            "{:<48} {:>10.2} ns/direction  {:>7.2}x vs {}{extra}\n",
+            "{:<52} {:>10.2} ns/direction  {:>7.2}x vs {}{extra}{also}\n",
             m.name,
             m.ns_per_direction,
             peer.ns_per_direction / m.ns_per_direction,
@@ -565,7 +643,7 @@ pub fn cct_report(results: &[CctMeasurement]) -> String {
     if let Some(peer) = results.first() {
         for m in results {
             s += &format!(
-                "{:<48} {:>10.1} ns/call       {:>7.1}x vs {}\n",
+                "{:<52} {:>10.1} ns/call       {:>7.1}x vs {}\n",
                 m.name,
                 m.ns_per_call,
                 peer.ns_per_call / m.ns_per_call,
@@ -610,7 +688,7 @@ pub fn physical(dirs: &[Vec3], runs: usize, results: &[Measurement]) -> Result<S
         black_box(atm.sky(black_box(51.6), 17.2).ok());
     });
     s += &format!(
-        "{:<48} {:>10.2} us/sky\n",
+        "{:<52} {:>10.2} us/sky\n",
         "physical sky (one sun position)",
         t.as_secs_f64() * 1e6
     );
@@ -645,7 +723,7 @@ pub fn physical(dirs: &[Vec3], runs: usize, results: &[Measurement]) -> Result<S
         let ratio = peer.map_or(String::new(), |p| {
             format!("  {:>7.2}x vs {}", p.ns_per_direction / ns, p.name)
         });
-        s += &format!("{name:<48} {ns:>10.2} ns/direction{ratio}\n");
+        s += &format!("{name:<52} {ns:>10.2} ns/direction{ratio}\n");
     }
     Ok(s)
 }

@@ -8,8 +8,10 @@
 //!
 //! The neural sky has a kernel of its own for AVX2 with fused multiply-add
 //! ([`sky_core::NeuralSky::rgb_batch_avx2`], about 30 % faster, rounding differently):
-//! [`neural_batch`] picks it.
+//! [`neural_batch`] picks it. So has the daylight sky's
+//! ([`sky_core::daylight::DaylightSky::rgb_batch_avx2`]): [`daylight_batch`].
 
+use sky_core::daylight::DaylightSky;
 use sky_core::{NeuralSky, Vec3};
 
 /// Runs `f`, compiled with AVX2 enabled when the CPU supports it.
@@ -50,7 +52,45 @@ pub fn neural_batch<const H: usize>(sky: &NeuralSky<H>, dirs: &[Vec3], out: &mut
     );
 }
 
-/// Whether this CPU has AVX2 and FMA (the features of [`NeuralSky::rgb_batch_avx2`]).
+/// Fills `out` with the daylight sky's linear sRGB radiance towards `dirs` by the fastest
+/// kernel this CPU runs: [`DaylightSky::rgb_batch_avx2`] where it has AVX2 and FMA, else
+/// [`DaylightSky::rgb_batch`] through [`fastest`].
+pub fn daylight_batch(sky: &DaylightSky, dirs: &[Vec3], out: &mut [Vec3]) {
+    #[cfg(target_arch = "x86_64")]
+    if has_avx2_fma() {
+        // SAFETY: the CPU has AVX2 and FMA, which was detected just above.
+        #[allow(unsafe_code)]
+        unsafe {
+            sky.rgb_batch_avx2(dirs, out);
+        }
+        return;
+    }
+    fastest(
+        #[inline(always)]
+        || sky.rgb_batch(dirs, out),
+    );
+}
+
+/// [`daylight_batch`] for CIE X, Y, Z ([`DaylightSky::xyz_batch_avx2`] or
+/// [`DaylightSky::xyz_batch`]).
+pub fn daylight_xyz_batch(sky: &DaylightSky, dirs: &[Vec3], out: &mut [Vec3]) {
+    #[cfg(target_arch = "x86_64")]
+    if has_avx2_fma() {
+        // SAFETY: the CPU has AVX2 and FMA, which was detected just above.
+        #[allow(unsafe_code)]
+        unsafe {
+            sky.xyz_batch_avx2(dirs, out);
+        }
+        return;
+    }
+    fastest(
+        #[inline(always)]
+        || sky.xyz_batch(dirs, out),
+    );
+}
+
+/// Whether this CPU has AVX2 and FMA (the features of [`NeuralSky::rgb_batch_avx2`] and
+/// [`DaylightSky::rgb_batch_avx2`]).
 #[must_use]
 pub fn has_avx2_fma() -> bool {
     #[cfg(target_arch = "x86_64")]

@@ -20,6 +20,8 @@ const models = {
   preetham: (api, a) => api.Sky.preetham(40 * D, a, 3),
   "neural (preetham weights)": (api, a) => api.Sky.neural("preetham", 40 * D, a, 3),
   "aoas physical": (api, a) => api.Sky.aoasWithSun("physical", 40 * D, a),
+  "daylight (sun 50° up)": (api, a) => api.Sky.daylight(40 * D, a, 0.43),
+  "daylight (blend, 2° up)": (api, a) => api.Sky.daylight(88 * D, a, 0.43),
 };
 const out = new Uint8ClampedArray(512 * 512 * 4);
 const ROUNDS = 15;

@@ -76,6 +76,9 @@ fn sh(z: f32, a: f32, t: f32, bands: u32) -> Result<Case, SkyError> {
     ))
 }
 
+/// The daylight sky one direction at a time (`DaylightSky::rgb`): sky-wasm draws it through
+/// `DaylightSky::rgb_batch`, so the parity tests compare the wasm32 batch with the host's single
+/// direction.
 fn daylight(z: f32, a: f32, aod: f32) -> Result<Case, SkyError> {
     let sky = Daylight::new(Sun::new(z, a)?, aod)?.sky();
     let spec = format!(r#"{{"kind":"daylight","args":[{z},{a},{aod}]}}"#);

@@ -32,6 +32,11 @@ import * as shaders from "./shaders.js";
 /** The shader models, as sky-wasm's `Sky.model` names them. */
 export const MODELS = ["preetham", "neural", "aoas", "sh"];
 
+/** The error for a model SkyMesh cannot draw, the same from the constructor and from `update`. */
+function checkModel(model) {
+  if (!MODELS.includes(model)) throw new Error(`model = "${model}" is not one of ${MODELS.join(", ")}`);
+}
+
 /** sky-core's frame (x east, y north, z up) of a three.js world direction (y up, -z north). */
 export function toSkyFrame(v) {
   return { x: v.x, y: -v.z, z: v.y };
@@ -114,6 +119,7 @@ export class SkyMesh extends Mesh {
    *   (the sky's mean luminance to middle grey)
    */
   constructor({ model = "preetham", turbidity = 3, weights = "preetham", preset = "physical", bands = 3, ev100 = null } = {}) {
+    checkModel(model);
     const uniforms = {
       sunPosition: { value: new Vector3(0, 1, 0) },
       turbidity: { value: turbidity },
@@ -150,6 +156,7 @@ export class SkyMesh extends Mesh {
   /** A sky-wasm `Sky` for the current parameters (the caller frees it). Throws sky-core's
    * message for parameters out of range. */
   buildSky() {
+    checkModel(this.model);
     const u = this.material.uniforms;
     const { zenith, azimuth } = sunAngles(u.sunPosition.value);
     const t = u.turbidity.value;
@@ -164,8 +171,6 @@ export class SkyMesh extends Mesh {
         return Sky.aoasWithSun(this.preset, zenith, azimuth);
       case "sh":
         return Sky.sh(zenith, azimuth, t, this.bands);
-      default:
-        throw new Error(`model = "${this.model}" is not one of ${MODELS.join(", ")}`);
     }
   }
 

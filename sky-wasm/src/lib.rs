@@ -88,11 +88,7 @@ impl Model {
                     *o = s.radiance(*d);
                 }
             }
-            Self::Daylight(s) => {
-                for (o, d) in out.iter_mut().zip(dirs) {
-                    *o = s.rgb(*d);
-                }
-            }
+            Self::Daylight(s) => s.rgb_batch(dirs, out),
         }
     }
 }

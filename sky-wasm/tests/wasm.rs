@@ -3,8 +3,9 @@
 //!
 //! * parity: every model (Preetham, the neural sky with both shipped weight sets and from a weight
 //!   file's bytes, every AOAS preset and one with its sun moved, SH, the daylight sky by day, in
-//!   its networks' blends, in twilight and past astronomical twilight) gives the values of the
-//!   native build of sky-core to 1e-6 relative, per direction through `Sky::rgb` and for a whole
+//!   its networks' blends, in twilight and past astronomical twilight, through its batch path
+//!   against the native one-direction path) gives the values of the native build of sky-core
+//!   to 1e-6 relative, per direction through `Sky::rgb` and for a whole
 //!   fisheye image through `Renderer::render_linear`;
 //! * errors: sky-core's errors become `JsError`s (JavaScript `Error`s) carrying sky-core's
 //!   message, and so do sky-wasm's own (unknown names, an output array of the wrong length);

@@ -77,9 +77,11 @@ pub const MIN_WAVELENGTH: f32 = 0.38;
 /// The longest wavelength accepted, in µm.
 pub const MAX_WAVELENGTH: f32 = 0.78;
 
-/// Views down to this far below the viewer's horizon (in cos θ) still count as on it, as in the
-/// Preetham sky: the f32 nearest π/2 lies 4.4e-8 rad past it.
-pub const HORIZON_TOLERANCE: f32 = 1e-6;
+/// Views down to this far below the viewer's horizon (in cos θ) still count as on it:
+/// [`geom::HORIZON_TOLERANCE`](crate::geom::HORIZON_TOLERANCE), the crate's one below-horizon
+/// rule (crate docs, "Conventions"), applied to the viewer's own horizon (tilted when the
+/// viewer stands away from the origin, eq. 2).
+pub const HORIZON_TOLERANCE: f32 = crate::geom::HORIZON_TOLERANCE;
 
 /// Directions evaluated together by the batch path: the lanes of its loops.
 const CHUNK: usize = 32;

@@ -40,15 +40,17 @@
 //! ```
 
 use core::arch::x86_64::{
-    __m256, _mm256_div_ps, _mm256_fmadd_ps, _mm256_fnmadd_ps, _mm256_max_ps, _mm256_min_ps,
-    _mm256_mul_ps, _mm256_permute2f128_ps, _mm256_rsqrt_ps, _mm256_set1_ps, _mm256_shuffle_ps,
-    _mm256_sub_ps, _mm256_unpackhi_ps, _mm256_unpacklo_ps,
+    __m256, _CMP_GE_OQ, _mm256_and_ps, _mm256_cmp_ps, _mm256_div_ps, _mm256_fmadd_ps,
+    _mm256_fnmadd_ps, _mm256_max_ps, _mm256_min_ps, _mm256_mul_ps, _mm256_permute2f128_ps,
+    _mm256_rsqrt_ps, _mm256_set1_ps, _mm256_shuffle_ps, _mm256_sub_ps, _mm256_unpackhi_ps,
+    _mm256_unpacklo_ps,
 };
 
 use bytemuck::{must_cast, must_cast_mut, must_cast_ref};
 use glam::Vec3;
 
 use super::NeuralSky;
+use crate::geom::HORIZON_TOLERANCE;
 
 /// Registers evaluated together: four of eight lanes, so that the CPU overlaps their
 /// dependency chains (32 directions a step).
@@ -157,9 +159,17 @@ impl<const H: usize> NeuralSky<H> {
         let [hr, hg, hb] = self.half_scale.map(|s| splat(s));
         let max = splat(f32::MAX);
         let radiance = |h, z| _mm256_min_ps(_mm256_mul_ps(_mm256_mul_ps(h, z), z), max);
+        // The crate's below-horizon rule: 0 where the unit view's z < −HORIZON_TOLERANCE (and
+        // for NaN, whose ordered comparison is false), as `rgb`.
+        let horizon = splat(-HORIZON_TOLERANCE);
         let out: &mut [[[f32; 8]; 3]; GROUP] = must_cast_mut(out);
         for i in 0..GROUP {
-            let rgb = interleave([radiance(hr, r[i]), radiance(hg, g[i]), radiance(hb, b[i])]);
+            let above = _mm256_cmp_ps::<_CMP_GE_OQ>(z[i], horizon);
+            let rgb = interleave([
+                _mm256_and_ps(radiance(hr, r[i]), above),
+                _mm256_and_ps(radiance(hg, g[i]), above),
+                _mm256_and_ps(radiance(hb, b[i]), above),
+            ]);
             out[i] = rgb.map(must_cast);
         }
     }
@@ -169,7 +179,7 @@ impl<const H: usize> NeuralSky<H> {
 /// Like `math::rsqrt`, x is first clamped to [`f32::MIN_POSITIVE`, `f32::MAX`] (NaN to the
 /// lower bound), so the result is finite and `x · rsqrt(x)` is 0 for x = 0.
 #[target_feature(enable = "avx2,fma")]
-fn rsqrt<const G: usize>(x: [__m256; G]) -> [__m256; G] {
+pub(crate) fn rsqrt<const G: usize>(x: [__m256; G]) -> [__m256; G] {
     x.map(|x| {
         let x = _mm256_min_ps(
             _mm256_max_ps(x, _mm256_set1_ps(f32::MIN_POSITIVE)),
@@ -185,7 +195,7 @@ fn rsqrt<const G: usize>(x: [__m256; G]) -> [__m256; G] {
 /// Eight directions as three registers of interleaved coordinates `[x0 y0 z0 x1 y1 z1 x2 y2]`,
 /// `[z2 x3 ..]`, `[.. y7 z7]` to `[x0..x7]`, `[y0..y7]`, `[z0..z7]`.
 #[target_feature(enable = "avx2,fma")]
-fn deinterleave([a, b, c]: [__m256; 3]) -> [__m256; 3] {
+pub(crate) fn deinterleave([a, b, c]: [__m256; 3]) -> [__m256; 3] {
     // Per 128-bit half: directions 0-3 and 4-7, as [x0 y0 z0 x1], [y1 z1 x2 y2], [z2 x3 y3 z3].
     let m03 = _mm256_permute2f128_ps::<0x30>(a, b);
     let m14 = _mm256_permute2f128_ps::<0x21>(a, c);
@@ -202,7 +212,7 @@ fn deinterleave([a, b, c]: [__m256; 3]) -> [__m256; 3] {
 /// The inverse of [`deinterleave`]: `[r0..r7]`, `[g0..g7]`, `[b0..b7]` to
 /// `[r0 g0 b0 r1 g1 b1 r2 g2]`, `[b2 r3 ..]`, `[.. g7 b7]`.
 #[target_feature(enable = "avx2,fma")]
-fn interleave([r, g, b]: [__m256; 3]) -> [__m256; 3] {
+pub(crate) fn interleave([r, g, b]: [__m256; 3]) -> [__m256; 3] {
     let rg_lo = _mm256_unpacklo_ps(r, g); // [r0 g0 r1 g1]
     let rg_hi = _mm256_unpackhi_ps(r, g); // [r2 g2 r3 g3]
     let t = _mm256_shuffle_ps::<0b11_10_01_00>(b, rg_lo); // [b0 b1 r1 g1]

@@ -338,10 +338,15 @@ impl<const H: usize> FixedNeuralSky<H> {
     /// network's unit (cd/m² for the shipped Preetham sky): integer arithmetic only. `dir` may
     /// have any length; the zero vector is evaluated as the f32 sky evaluates it (v = 0).
     /// Within 0.31 % of [`NeuralSky::rgb`](super::NeuralSky::rgb) for the shipped networks
-    /// (see the module docs for where); saturates at `u64::MAX` instead of overflowing.
+    /// (see the module docs for where); saturates at `u64::MAX` instead of overflowing. 0 below
+    /// the horizon, by the crate's rule as `NeuralSky::rgb` applies it
+    /// ([`geom::below_horizon`](crate::geom::below_horizon), on the Q1.30 unit vector).
     #[must_use]
     pub fn rgb(&self, dir: [i16; 3]) -> [u64; 3] {
         let v = unit_q30(dir);
+        if v[2] < HORIZON_Q30 {
+            return [0; 3];
+        }
         // d = |v − s| (seed 000's input), Q1.30; |v − s|² ≤ 4 · 2⁶⁰ fits a u64.
         let q = (0..3).fold(0u64, |acc, i| {
             let diff = (v[i] - self.sun[i]).unsigned_abs();
@@ -372,6 +377,12 @@ impl<const H: usize> FixedNeuralSky<H> {
         })
     }
 }
+
+/// The crate's below-horizon rule in Q1.30: z < −HORIZON_TOLERANCE ⇔ z · 2³⁰ < −1073.74 ⇔
+/// the integer z · 2³⁰ < −1073.
+#[allow(clippy::cast_possible_truncation)] // 1073.74 truncated towards zero, as intended
+const HORIZON_Q30: i64 =
+    -((crate::geom::HORIZON_TOLERANCE as f64 * (1u64 << UNIT_FRAC) as f64) as i64);
 
 /// Eq. 5, f(h) = 1/(1 + h²), for h in Q20: the result in Q23, in (0, 2²³].
 #[inline]

@@ -38,7 +38,7 @@ pub mod weights;
 use glam::Vec3;
 
 use crate::error::{SkyError, check_range};
-use crate::geom::Sun;
+use crate::geom::{HORIZON_TOLERANCE, Sun};
 use crate::math;
 
 pub use fixed::{FixedNeuralSky, FixedNeuralWeights};
@@ -56,7 +56,7 @@ pub const OUTPUTS: usize = 3;
 /// instructions in the order given and spill the many live vectors that order has: there, lane
 /// by lane (each lane's whole chain, the compiler vectorising across lanes) is 10 % faster.
 /// Either order performs the same operations on each lane, with identical results.
-const STEP_BY_STEP: bool = !cfg!(target_arch = "wasm32");
+pub(crate) const STEP_BY_STEP: bool = !cfg!(target_arch = "wasm32");
 
 /// The network inputs that depend only on the sky, and eq. 10's rotation, checked against the
 /// trained domain: shared by [`NeuralSky`] and [`FixedNeuralSky`].
@@ -243,7 +243,9 @@ impl<const H: usize> NeuralSky<H> {
 
     /// Linear sRGB radiance towards `dir` (need not be normalised if its length lies in
     /// [1e-18, 1e18]), in the units of the training data (cd/m² for the shipped Preetham sky).
-    /// Finite and non-negative for every input. The accuracy is that of the weights (see
+    /// 0 below the horizon (the crate's rule, [`geom::below_horizon`](crate::geom::below_horizon):
+    /// the network is trained on the sky above it and its output there means nothing).
+    /// Finite and non-negative for every input (0 for a NaN direction). The accuracy is that of the weights (see
     /// [`pretrained`]).
     #[inline]
     #[must_use]
@@ -288,7 +290,7 @@ impl<const H: usize> NeuralSky<H> {
     /// either order of [`STEP_BY_STEP`]. Every lane performs the same operations in the same
     /// order whatever `L` and `STEP` are, so one direction and a batch give identical results.
     #[inline(always)]
-    fn rgb_lanes<const L: usize, const STEP: bool>(
+    pub(crate) fn rgb_lanes<const L: usize, const STEP: bool>(
         &self,
         x: [f32; L],
         y: [f32; L],
@@ -363,12 +365,19 @@ impl<const H: usize> NeuralSky<H> {
             }
         }
         // Eq. 7 through eq. 6's output activation: L_s(f(z)) = ½ z² (see the module docs);
-        // NaN (only from NaN directions) becomes f32::MAX.
+        // NaN (only from NaN directions) becomes f32::MAX. Then the crate's below-horizon rule
+        // (crate docs, "Conventions"): 0 where the unit view's z < −HORIZON_TOLERANCE, and for
+        // a NaN direction (whose comparison is false).
         let [sr, sg, sb] = self.half_scale;
         for i in 0..L {
-            r[i] = math::at_most(sr * r[i] * r[i], f32::MAX);
-            g[i] = math::at_most(sg * g[i] * g[i], f32::MAX);
-            b[i] = math::at_most(sb * b[i] * b[i], f32::MAX);
+            let above = if vz[i] >= -HORIZON_TOLERANCE {
+                1.0
+            } else {
+                0.0
+            };
+            r[i] = math::at_most(sr * r[i] * r[i], f32::MAX) * above;
+            g[i] = math::at_most(sg * g[i] * g[i], f32::MAX) * above;
+            b[i] = math::at_most(sb * b[i] * b[i], f32::MAX) * above;
         }
         [r, g, b]
     }

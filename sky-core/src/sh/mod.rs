@@ -175,13 +175,14 @@ impl ShSky {
     }
 
     /// The SH sky's radiance towards `dir`: [`series`](Self::series) with every channel
-    /// clamped at zero above the horizon (`dir.z ≥ 0`), black below it; linear sRGB on the
+    /// clamped at zero above the horizon, black below it (the crate's rule,
+    /// [`geom::below_horizon`](crate::geom::below_horizon), on `dir` normalised); linear sRGB on the
     /// model's scale, finite and non-negative for every `dir` (need not be unit length; a zero
     /// or non-finite vector gives a finite, meaningless value).
     #[inline]
     #[must_use]
     pub fn radiance(&self, dir: Vec3) -> Vec3 {
-        if dir.z >= 0.0 {
+        if dir.z >= -crate::geom::HORIZON_TOLERANCE * dir.length() {
             self.series(dir).max(Vec3::ZERO)
         } else {
             Vec3::ZERO

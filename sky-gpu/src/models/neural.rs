@@ -4,7 +4,7 @@
 
 use sky_core::NeuralSky;
 
-use crate::ir::{Body, Builtin, Function, Ty, call, float, int, splat3};
+use crate::ir::{Body, Builtin, Function, Ty, call, float, int, select, splat3};
 use crate::models::preetham::normalised;
 use crate::{Model, Shader, param};
 
@@ -30,7 +30,10 @@ pub fn shader(hidden: usize) -> Shader {
         Ty::Vec4,
         crate::ir::Expr::Construct(
             Ty::Vec4,
-            vec![d, call(Builtin::Sqrt, [call(Builtin::Dot, [q.clone(), q])])],
+            vec![
+                d.clone(),
+                call(Builtin::Sqrt, [call(Builtin::Dot, [q.clone(), q])]),
+            ],
         ),
     );
     b.var("z", Ty::Vec3, p(1).swizzle("xyz"));
@@ -50,13 +53,18 @@ pub fn shader(hidden: usize) -> Shader {
         b.add_assign("z", o.swizzle("xyz") * a);
     });
     let z = crate::ir::name("z");
-    // Eq. 7 through eq. 6's output activation: ½ scale z² (sky-core's module docs).
-    b.return_(call(
-        Builtin::Min,
-        [
-            p(2).swizzle("xyz") * (z.clone() * z),
-            splat3(float(f32::MAX)),
-        ],
+    // Eq. 7 through eq. 6's output activation: ½ scale z² (sky-core's module docs); 0 below
+    // the horizon (sky-core's rule).
+    b.return_(select(
+        super::above_horizon(d),
+        call(
+            Builtin::Min,
+            [
+                p(2).swizzle("xyz") * (z.clone() * z),
+                splat3(float(f32::MAX)),
+            ],
+        ),
+        splat3(float(0.0)),
     ));
     Shader {
         model: Model::Neural,
@@ -64,7 +72,7 @@ pub fn shader(hidden: usize) -> Shader {
         doc: format!(
             "The neural sky of seed 000 (a 6-{hidden}-3 network, eqs. 4-7): sky_radiance(dir) is linear\n\
              sRGB in the units of the training data (cd/m² for the shipped skies) towards the view\n\
-             direction dir (sky-core's frame: +z up; any length).\n\
+             direction dir (sky-core's frame: +z up; any length), 0 below the horizon (sky-core's rule).\n\
              Parameters (sky-core's NeuralSky::folded): [0].xyz the unit direction towards the sun,\n\
              [1].xyz the output biases, [2].xyz half the output scales; for each hidden neuron j,\n\
              [3 + j] its coefficients of v_x, v_y, v_z and d, [3 + {hidden} + j].xyz its output weights\n\

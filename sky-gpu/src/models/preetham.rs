@@ -3,7 +3,7 @@
 
 use sky_core::PreethamSky;
 use sky_core::color::XYZ_TO_LINEAR_SRGB;
-use sky_core::preetham::{HORIZON_TOLERANCE, MIN_COS_THETA};
+use sky_core::preetham::MIN_COS_THETA;
 
 use crate::ir::{Body, Builtin, Expr, Function, Ty, call, float, select, vec3};
 use crate::{Model, Shader, param};
@@ -68,11 +68,7 @@ pub fn shader() -> Shader {
     let lum = b.let_(
         "luminance",
         Ty::F32,
-        select(
-            d.swizzle("z").greater_equal(float(-HORIZON_TOLERANCE)),
-            f.clone().swizzle("x"),
-            float(0.0),
-        ),
+        select(super::above_horizon(d), f.clone().swizzle("x"), float(0.0)),
     );
     let (x, y) = (f.clone().swizzle("y"), f.swizzle("z"));
     // Eq. 27, with black for y <= 0 as sky-core's xyy_to_xyz.

@@ -8,7 +8,7 @@ use sky_core::sh::basis::{
     self, DOUBLE_FACTORIAL, MAX_BANDS, MAX_COEFFICIENTS, NORMALISATION, RECURRENCE,
 };
 
-use crate::ir::{Body, Expr, Function, Ty, float, name, splat3};
+use crate::ir::{Body, Builtin, Expr, Function, Ty, call, float, name, select, splat3};
 use crate::models::preetham::normalised;
 use crate::{Model, Shader, param};
 
@@ -23,7 +23,7 @@ pub fn shader() -> Shader {
     let (x, y, z) = (
         d.clone().swizzle("x"),
         d.clone().swizzle("y"),
-        d.swizzle("z"),
+        d.clone().swizzle("z"),
     );
     // (x + i y)^m = sin^m θ (cos mφ + i sin mφ), m = 1..6 (m = 0 is 1 + 0 i).
     let mut re: Vec<Expr> = vec![float(1.0)];
@@ -73,13 +73,19 @@ pub fn shader() -> Shader {
         #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap)] // i < 49
         b.add_assign("sum", param(Model::Sh, i as i32).swizzle("xyz") * yi);
     }
-    b.return_(name("sum"));
+    // sky-core's ShSky::radiance: the series clamped at zero, 0 below the horizon (its rule).
+    b.return_(select(
+        super::above_horizon(d),
+        call(Builtin::Max, [name("sum"), splat3(float(0.0))]),
+        splat3(float(0.0)),
+    ));
     Shader {
         model: Model::Sh,
         params_len: PARAMS,
-        doc: "The spherical-harmonics sky (seed 001): sky_radiance(dir) = Σ c_lm Y_lm(dir) over seven\n\
-              bands, linear sRGB on the model's scale (cd/m² for the Preetham sky) towards the view\n\
-              direction dir (sky-core's frame: +z up; any length). Real orthonormal SH without the\n\
+        doc: "The spherical-harmonics sky (seed 001): sky_radiance(dir) = max(Σ c_lm Y_lm(dir), 0) over\n\
+              seven bands (sky-core's ShSky::radiance), 0 below the horizon, linear sRGB on the\n\
+              model's scale (cd/m² for the Preetham sky) towards the view direction dir (sky-core's\n\
+              frame: +z up; any length). Real orthonormal SH without the\n\
               Condon-Shortley phase (sky-core's sh::basis).\n\
               Parameters (sky-core's ShSky::coefficients): [l² + l + m].xyz the RGB coefficient c_lm,\n\
               0 beyond the sky's bands."

@@ -305,8 +305,9 @@ test("screenshot kept as an artifact", async () => {
 
 test("frame times, as the demo's own readout measures them (printed, not asserted)", async () => {
   // Speed is measured, not asserted (a shared machine's timings vary); the goals are 8 ms for
-  // the neural sky and 16 ms for Preetham per 512 × 512 fisheye frame.
-  const goals = { "neural-preetham": 8, preetham: 16, aoas: null, daylight: null };
+  // the neural sky, 16 ms for Preetham and 12 ms for the daylight sky (its batch path, sun 50°
+  // up) per 512 × 512 fisheye frame.
+  const goals = { "neural-preetham": 8, preetham: 16, aoas: null, daylight: 12 };
   const medians = {};
   for (const model of Object.keys(goals)) {
     await set({ model, view: "single", preset: "physical", "sun-zenith": 40, "sun-azimuth": 90, turbidity: 3 });

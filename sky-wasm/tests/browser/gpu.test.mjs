@@ -1,9 +1,10 @@
 // Each model's generated shader on a GPU in Debian's Chromium, headless, against sky-core's CPU
-// values (sky-wasm's `Sky.rgbBatch`) at the same 1,600 view directions: the GLSL ES 3.00 text
+// values (sky-wasm's `Sky.rgbBatch`) at the same 1,792 view directions: the GLSL ES 3.00 text
 // in WebGL2 (ANGLE on SwiftShader) rendered into an RGBA32F target (EXT_color_buffer_float)
 // and read back, and the WGSL text in WebGPU (Dawn on SwiftShader's Vulkan) run as a compute
 // shader. The bound: 1e-3 relative per channel where sky-core's linear radiance is above 1e-3
-// of the image's peak.
+// of the image's peak; and exactly 0 where sky-core's is 0 (every direction below the horizon:
+// sky-core's one below-horizon rule, its crate docs' "Conventions").
 //
 // SKY_WASM_SITE: the built site (scripts/wasm.sh build).
 import { test, before, after } from "node:test";
@@ -52,17 +53,21 @@ const SKIES = [
   ["sh 7 bands, sun 75°, turbidity 5", "sh", [75 * DEG, -1.2, 5, 7]],
 ];
 
-/** In the page: 1,600 directions (x, y, z) — 32 zenith rings × 48 azimuths over the upper
- * hemisphere, and 64 within 4° of the sun — the CPU's values and the GPU's. */
+/** Directions in all: 1,536 over the upper hemisphere, 64 near the sun, 192 below the horizon. */
+const N = 1792;
+
+/** In the page: N directions (x, y, z) — 32 zenith rings × 48 azimuths over the upper
+ * hemisphere, 64 within 4° of the sun, and 4 rings × 48 below the horizon (1e-5 below it to
+ * near the nadir) — the CPU's values and the GPU's. */
 async function measure(ctor, args, api) {
-  return page.evaluate(async ({ ctor, args, api }) => {
+  return page.evaluate(async ({ ctor, args, api, N }) => {
     const { Sky } = window.wasm;
     const sky = Sky[ctor](...args);
     const model = sky.model;
     const shader = window.shaders[model];
     const params = sky.shaderParams();
     const [sz, sa] = [sky.sunZenith, sky.sunAzimuth];
-    const dirs = new Float32Array(1600 * 4);
+    const dirs = new Float32Array(N * 4);
     const put = (i, t, p) => dirs.set([Math.sin(t) * Math.cos(p), Math.sin(t) * Math.sin(p), Math.cos(t), 0], 4 * i);
     let n = 0;
     for (let i = 0; i < 32; i++) for (let k = 0; k < 48; k++) put(n++, ((i + 0.5) / 32) * (Math.PI / 2), ((k + 0.5) / 48) * 2 * Math.PI);
@@ -75,8 +80,13 @@ async function measure(ctor, args, api) {
       const d = [0, 1, 2].map((c) => Math.cos(g) * s[c] + Math.sin(g) * (Math.cos(a) * e1[c] + Math.sin(a) * e2[c]));
       dirs.set([...d, 0], 4 * n++);
     }
-    const xyz = new Float32Array(1600 * 3);
-    for (let i = 0; i < 1600; i++) xyz.set(dirs.subarray(4 * i, 4 * i + 3), 3 * i);
+    // Below the horizon: z = −1e-5 (past sky-core's tolerance of 1e-6), −0.01, −0.3, −0.9.
+    for (const z of [1e-5, 0.01, 0.3, 0.9]) for (let k = 0; k < 48; k++) {
+      const p = ((k + 0.25) / 48) * 2 * Math.PI, r = Math.sqrt(1 - z * z);
+      dirs.set([r * Math.cos(p), r * Math.sin(p), -z, 0], 4 * n++);
+    }
+    const xyz = new Float32Array(N * 3);
+    for (let i = 0; i < N; i++) xyz.set(dirs.subarray(4 * i, 4 * i + 3), 3 * i);
     const cpu = Array.from(sky.rgbBatch(xyz));
     sky.free();
 
@@ -86,7 +96,7 @@ async function measure(ctor, args, api) {
       const gl = canvas.getContext("webgl2");
       if (!gl) throw new Error("no WebGL2");
       if (!gl.getExtension("EXT_color_buffer_float")) throw new Error("no EXT_color_buffer_float");
-      const [w, h] = [64, 25];
+      const [w, h] = [64, N / 64];
       const compile = (type, text) => {
         const sh = gl.createShader(type);
         gl.shaderSource(sh, text);
@@ -167,7 +177,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
       const pass = enc.beginComputePass();
       pass.setPipeline(pipeline);
       pass.setBindGroup(0, bind);
-      pass.dispatchWorkgroups(1600 / 64);
+      pass.dispatchWorkgroups(N / 64);
       pass.end();
       enc.copyBufferToBuffer(output, 0, readback, 0, dirs.byteLength);
       device.queue.submit([enc.finish()]);
@@ -177,15 +187,19 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
       device.destroy();
     }
     return { model, cpu, gpu };
-  }, { ctor, args, api });
+  }, { ctor, args, api, N });
 }
 
 /** The worst relative difference per channel above the floor, and how many directions it
- * covered. */
+ * covered; how many directions sky-core makes black, and at how many of them the GPU is not. */
 function compare({ cpu, gpu }) {
   const peak = Math.max(...cpu);
-  let worst = 0, at = -1, counted = 0, nonFinite = 0;
-  for (let i = 0; i < 1600; i++) {
+  let worst = 0, at = -1, counted = 0, nonFinite = 0, black = 0, notBlack = 0;
+  for (let i = 0; i < N; i++) {
+    if ([0, 1, 2].every((c) => cpu[3 * i + c] === 0)) {
+      black++;
+      if ([0, 1, 2].some((c) => gpu[4 * i + c] !== 0)) notBlack++;
+    }
     let any = false;
     for (let c = 0; c < 3; c++) {
       const want = cpu[3 * i + c], got = gpu[4 * i + c];
@@ -198,17 +212,19 @@ function compare({ cpu, gpu }) {
     }
     if (any) counted++;
   }
-  return { worst, at, counted, nonFinite, peak };
+  return { worst, at, counted, nonFinite, peak, black, notBlack };
 }
 
 for (const api of ["webgl2", "webgpu"]) {
-  test(`${api}: every model's shader agrees with sky-core to ${BOUND} relative at 1,600 directions`, async () => {
+  test(`${api}: every model's shader agrees with sky-core to ${BOUND} relative at ${N} directions, 0 below the horizon`, async () => {
     for (const [label, ctor, args] of SKIES) {
       const r = compare(await measure(ctor, args, api));
       console.log(`  ${api} ${label}: max relative difference ${r.worst.toExponential(2)} over ${r.counted} directions above ${FLOOR} of the peak (${r.peak.toPrecision(4)})`);
       assert.equal(r.nonFinite, 0, `${label}: non-finite GPU values`);
       assert.ok(r.counted >= 1000, `${label}: only ${r.counted} directions above the floor`);
       assert.ok(r.worst <= BOUND, `${label}: ${r.worst} at direction ${r.at}`);
+      assert.ok(r.black >= 192, `${label}: sky-core black at only ${r.black} directions (192 below the horizon)`);
+      assert.equal(r.notBlack, 0, `${label}: the GPU is not black at ${r.notBlack} of sky-core's ${r.black} black directions`);
     }
     assert.deepEqual(problems, []);
   });
