@@ -174,6 +174,9 @@ fn held_out(days: &[String], s: &Sample) -> bool {
     days.iter().position(|d| *d == s.date).expect("a day") % 2 == 1
 }
 
+/// A model's chromaticity (x, y) and melanopic DER for a sample.
+type Prediction = ((f64, f64), f64);
+
 /// The fitted overcast light: the index where the ramp ends, x, y, melanopic DER.
 #[derive(Debug, Clone, Copy)]
 struct Fit {
@@ -188,7 +191,7 @@ impl Fit {
     }
 
     /// The model's chromaticity and melanopic DER for a sample (f64).
-    fn predict(&self, s: &Sample) -> ((f64, f64), f64) {
+    fn predict(&self, s: &Sample) -> Prediction {
         let w = self.fraction(s.index);
         let o = xyz_per_lux(self.xy);
         let xy = chromaticity(
@@ -273,15 +276,12 @@ pub(super) const MELANOPIC_DER: f32 = {:.4};
     )
 }
 
-/// RMS and largest of Δu′v′, CCT difference (K) and melanopic DER difference.
-fn errors<'a>(
-    samples: impl Iterator<Item = &'a Sample>,
-    predict: impl Fn(&Sample) -> ((f64, f64), f64),
-) -> [(f64, f64); 3] {
+/// RMS and largest of Δu′v′, CCT difference (K) and melanopic DER difference of predictions
+/// against their measurements.
+fn errors<'a>(pairs: impl Iterator<Item = (&'a Sample, Prediction)>) -> [(f64, f64); 3] {
     let mut sums = [(0.0f64, 0.0f64); 3];
     let mut n = 0.0;
-    for s in samples {
-        let (xy, der) = predict(s);
+    for (s, (xy, der)) in pairs {
         let e = [delta_uv_prime(xy, s.xy), cct(xy) - cct(s.xy), der - s.der];
         for (sum, e) in sums.iter_mut().zip(e) {
             sum.0 += e * e;
@@ -373,13 +373,18 @@ fn colour_under_cloud_against_measured_daylight() {
         );
     }
     println!(
-        "\nfitted on {} spectra ({} days): ramp ends at k_c {:.2}, overcast light x {:.4}, y {:.4} ({:.0} K), melanopic DER {:.4} (D_T at that CCT: {:.4})",
+        "\nfitted on {} spectra ({} days): ramp ends at k_c {:.2}, overcast light x {:.4}, y {:.4} ({:.0} K, Duv {:+.4}), melanopic DER {:.4} (D_T at that CCT: {:.4})",
         fitting.len(),
         days.len().div_ceil(2),
         shipped.index,
         shipped.xy.0,
         shipped.xy.1,
         cct(shipped.xy),
+        {
+            #[allow(clippy::cast_possible_truncation)]
+            let c = sky_core::cct::cct_duv(shipped.xy.0 as f32, shipped.xy.1 as f32);
+            c.expect("a CCT").duv
+        },
         shipped.der,
         {
             #[allow(clippy::cast_possible_truncation)]
@@ -388,7 +393,7 @@ fn colour_under_cloud_against_measured_daylight() {
         }
     );
 
-    let model = errors(test.iter().copied(), |s| (s.model_xy, s.model_der));
+    let model = errors(test.iter().map(|s| (*s, (s.model_xy, s.model_der))));
     let before = Fit {
         index: 0.3,
         xy: (0.31272, 0.32903),
@@ -404,16 +409,17 @@ fn colour_under_cloud_against_measured_daylight() {
     row("fitted (shipped, through `controller::step`)", model);
     row(
         "before: D65 at and below k_c 0.3",
-        errors(test.iter().copied(), |s| before.predict(s)),
+        errors(test.iter().map(|s| (*s, before.predict(s)))),
     );
     row(
         "the clear light alone",
-        errors(test.iter().copied(), |s| {
-            (chromaticity(s.clear[0], s.clear[1]), s.clear[2])
-        }),
+        errors(
+            test.iter()
+                .map(|s| (*s, (chromaticity(s.clear[0], s.clear[1]), s.clear[2]))),
+        ),
     );
     // Leave one day out: fit on the other ten days, predict the day left out.
-    let mut predictions: Vec<(&Sample, ((f64, f64), f64))> = Vec::new();
+    let mut predictions: Vec<(&Sample, Prediction)> = Vec::new();
     for day in &days {
         let rest: Vec<&Sample> = all.iter().filter(|s| s.date != *day).collect();
         let f = rounded(fit(&rest));
@@ -423,17 +429,11 @@ fn colour_under_cloud_against_measured_daylight() {
                 .map(|s| (s, f.predict(s))),
         );
     }
-    let cv = errors(predictions.iter().map(|p| p.0), |s| {
-        predictions
-            .iter()
-            .find(|p| std::ptr::eq(p.0, s))
-            .expect("predicted")
-            .1
-    });
+    let cv = errors(predictions.into_iter());
     row("fitted, leave one day out (all 27 spectra)", cv);
     row(
         "before, on all 27 spectra",
-        errors(all.iter(), |s| before.predict(s)),
+        errors(all.iter().map(|s| (s, before.predict(s)))),
     );
 
     // The shipped code agrees with the fit it ships (f32 against f64).
