@@ -154,9 +154,10 @@ pub struct Step {
     pub illuminance: Vec3,
     /// The melanopic EDI of that light, lux (CIE S 026:2018, D65-equivalent): the clear sky's
     /// global or diffuse light's without a measurement; with one, the mixture of
-    /// [`overcast::daylight_under_cloud`] taken through melanopic content too: the measured
-    /// illuminance times (1 − w) DER_clear + w DER_D65, with w the overcast fraction and
-    /// DER_D65 = 1 (S 026 defines melanopic EDI against D65).
+    /// [`overcast::daylight_under_cloud`] taken through melanopic content too (exact for a
+    /// mixture at equal luminance: melanopic EDI is linear in the spectrum): the measured
+    /// illuminance times (1 − w) DER_clear + w [`overcast::OVERCAST_MELANOPIC_DER`], with w the
+    /// overcast fraction.
     pub melanopic_edi: f32,
     /// CCT and Duv of that illuminance's chromaticity; `None` where |Duv| >
     /// [`daylight::MAX_DUV`] (the night-blue sky of nautical twilight).
@@ -312,15 +313,16 @@ pub fn step(
                 Light::Sky => reading.diffuse_illuminance(sun.sun().zenith()),
             };
             // Melanopic EDI is linear in the spectrum, so the mixture at equal luminance mixes
-            // the efficacy ratios; the overcast end is D65, whose ratio is 1 by definition.
+            // the efficacy ratios (a clear light without light counts as the overcast light).
+            let overcast_part = overcast::OVERCAST_MELANOPIC_DER * measured;
             let clear_part = if followed.y > 0.0 {
                 followed_melanopic * (measured / followed.y)
             } else {
-                measured
+                overcast_part
             };
             (
                 overcast::daylight_under_cloud(followed, w, measured),
-                ((1.0 - w) * clear_part + w * measured).min(f32::MAX),
+                ((1.0 - w) * clear_part + w * overcast_part).min(f32::MAX),
                 Some(weather),
             )
         }

@@ -78,7 +78,7 @@
 //! | all of these for one time and place, as `sky-train schedule` and the firmware compute it, optionally driven by an outdoor sensor | [`controller::step`] |
 //! | W/m² to lux (Perez 1990 global, diffuse and direct efficacy) | [`efficacy`] |
 //! | a global reading split into diffuse and direct (Erbs et al. 1982; Engerer2, Engerer 2015) | [`decomposition`] |
-//! | the colour of daylight from clear to overcast; the melanopic DER of daylight (CIE S 026) | [`overcast`] |
+//! | the colour of daylight from clear to overcast (fitted to measured spectra, Balakrishnan 2019); the melanopic DER of daylight (CIE S 026) | [`overcast`] |
 //!
 //! ```
 //! use sky_core::solar::{Site, SunPosition, UtcTime};

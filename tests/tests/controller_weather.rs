@@ -398,11 +398,13 @@ fn bad_readings_have_named_errors_or_documented_clamps() {
     assert!(values(&s).iter().all(|v| v.is_finite()));
 }
 
-/// The melanopic EDI under cloud: the clear light's at the clear-sky level, D65's efficacy ratio
-/// (1, CIE S 026's definition) when fully overcast, and between the two in proportion to the
-/// overcast fraction, mixing the clear light's ratio (from sky-core's daylight tables) and 1.
+/// The melanopic EDI under cloud: the clear light's at the clear-sky level, the fitted overcast
+/// light's efficacy ratio (`overcast::OVERCAST_MELANOPIC_DER`) when fully overcast, and between
+/// the two in proportion to the overcast fraction, mixing the clear light's ratio (from
+/// sky-core's daylight tables) and the overcast one.
 #[test]
-fn melanopic_edi_under_cloud_mixes_the_clear_light_and_d65() {
+fn melanopic_edi_under_cloud_mixes_the_clear_and_the_overcast_light() {
+    let overcast_der = f64::from(sky_core::overcast::OVERCAST_MELANOPIC_DER);
     let time = at(11 * 60, 0.0);
     let clear = run(&time, None);
     let der_clear = f64::from(clear.daylight.melanopic_der());
@@ -414,7 +416,7 @@ fn melanopic_edi_under_cloud_mixes_the_clear_light_and_d65() {
         let reading = (f64::from(clear.illuminance.y) * k) as f32;
         let s = run(&time, Some(Measurement::GlobalIlluminance(reading)));
         let w = f64::from(s.weather.expect("weather").overcast_fraction);
-        let expected = f64::from(reading) * ((1.0 - w) * der_clear + w);
+        let expected = f64::from(reading) * ((1.0 - w) * der_clear + w * overcast_der);
         let e = (f64::from(s.melanopic_edi) - expected).abs() / expected;
         println!(
             "k_c {k}: overcast fraction {w:.3}, melanopic DER {:.4}",
