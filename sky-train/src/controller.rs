@@ -633,9 +633,14 @@ pub fn schedule_measured(
     read_measurements(file, format, &mut |r| {
         run(r).map(|_| ()).map_err(Into::into)
     })?;
+    // Readings more than 30 minutes apart (or less than one): no clear-period detection, so
+    // no calibration, unless a state file asks for one (then its error).
     let mut learner = if calibration.enabled {
         let interval = interval_of(file, format)?;
-        Some(calibration_for(config, calibration, interval)?)
+        match calibration_for(config, calibration, interval) {
+            Err(_) if calibration.state.is_none() && !(60..=1800).contains(&interval) => None,
+            other => Some(other?),
+        }
     } else {
         None
     };

@@ -246,7 +246,10 @@ fn schedule_measurements_agree_with_the_reference() {
             "direct_lux",
             "clear_global_lux",
             "clear_sky_index",
-            "sky_type"
+            "sky_type",
+            "clear_sky_factor",
+            "clear_window",
+            "calibration_status"
         ]
     );
     let (mut worst, mut worst_parts) = (0.0f64, 0.0f64);
