@@ -534,7 +534,7 @@ impl SelfCalibration {
             _ => self
                 .all
                 .provisional
-                .map_or_else(|| self.factor(elevation_deg), |l| math::exp_libm(l)),
+                .map_or_else(|| self.factor(elevation_deg), math::exp_libm),
         }
     }
 
