@@ -29,6 +29,7 @@ use crate::led::{Channel, Drive, Luminaire};
 pub use crate::measurement::Measurement;
 use crate::overcast;
 use crate::perez::SkyCondition;
+use crate::self_calibration::{self, Calibrated, Observation, SelfCalibration};
 use crate::solar::{Site, SunAlgorithm, SunPosition, UtcTime};
 
 /// The example RGBW luminaire: typical LED chromaticities (CIE 1931 x, y) and outputs in lumens
@@ -74,9 +75,12 @@ pub struct Weather {
     /// cos Z through Perez's direct efficacy. The three efficacies are separate fits, so the
     /// diffuse and direct illuminances add up to the global only within their errors.
     pub direct_illuminance: f32,
-    /// The clear sky's horizontal illuminance at the same time ([`clear_sky_illuminance`]), XYZ
-    /// with Y in lux.
+    /// The clear sky's horizontal illuminance at the same time ([`clear_sky_illuminance`]) times
+    /// [`Weather::clear_sky_factor`], XYZ with Y in lux.
     pub clear_sky: Vec3,
+    /// The factor the clear sky was scaled by: 1 from [`step`]; from [`step_calibrated`], the
+    /// site's clear-sky level learned by [`SelfCalibration`] before this reading.
+    pub clear_sky_factor: f32,
     /// The measured global illuminance over the clear sky's ([`Weather::clear_sky`]); `None`
     /// where the clear sky's global illuminance is below [`MIN_CLEAR_SKY_LUX`] (the sun more
     /// than about 3° below the horizon), where a ratio would only measure the sensor's noise
@@ -267,6 +271,72 @@ pub fn step(
     lamp: &Luminaire<4>,
     measurement: Option<Measurement>,
 ) -> Result<Step, SkyError> {
+    let sun = settings.sun.position(time, site)?;
+    step_at(time, site, sun, settings, lamp, measurement, 1.0)
+}
+
+/// [`step`] with a measurement, its clear sky scaled by the site's clear-sky level that
+/// `calibration` has learned ([`crate::self_calibration`]; the factor at the sun's elevation,
+/// learned before this reading), and the reading then given to `calibration`: the measured
+/// global irradiance against the unscaled clear sky's ([`clear_sky_irradiance`]). Returns the
+/// step (its [`Weather::clear_sky_factor`] the factor used) and what the calibration made of the
+/// reading. Call it at the interval the calibration was made for, in time order.
+///
+/// ```
+/// use sky_core::clear_period::Criteria;
+/// use sky_core::controller::{example_luminaire, step_calibrated, Measurement, Settings};
+/// use sky_core::self_calibration::{Bounds, SelfCalibration, Status};
+/// use sky_core::solar::{Site, UtcTime};
+///
+/// let site = Site::new(48.21, 16.37, 190.0)?;
+/// let mut cal = SelfCalibration::new(Criteria::RENO_HANSEN_2016, 60, 16.37, Bounds::DEFAULT)?;
+/// let time = UtcTime::new(2026, 6, 21, 10, 0, 0.0)?;
+/// let (s, c) = step_calibrated(&time, &site, &Settings::default(), &example_luminaire()?,
+///                              Measurement::GlobalIrradiance(820.0), &mut cal)?;
+/// assert_eq!(s.weather.expect("measured").clear_sky_factor, 1.0); // nothing learned yet
+/// assert_eq!(c.status, Status::Learning);
+/// # Ok::<(), sky_core::SkyError>(())
+/// ```
+///
+/// # Errors
+/// [`step`]'s.
+pub fn step_calibrated(
+    time: &UtcTime,
+    site: &Site,
+    settings: &Settings,
+    lamp: &Luminaire<4>,
+    measurement: Measurement,
+    calibration: &mut SelfCalibration,
+) -> Result<(Step, Calibrated), SkyError> {
+    let sun = settings.sun.position(time, site)?;
+    #[allow(clippy::cast_possible_truncation)] // degrees
+    let elevation = sun.elevation_deg() as f32;
+    let factor = calibration.factor(elevation);
+    let s = step_at(time, site, sun, settings, lamp, Some(measurement), factor)?;
+    let (measured, clear_lux) = s
+        .weather
+        .map_or((0.0, 0.0), |w| (w.global_irradiance, s.daylight.global().y));
+    let clear = clear_sky_irradiance(clear_lux, sun.sun().zenith(), time.day_of_year());
+    let c = calibration.update(&Observation {
+        seconds: self_calibration::unix_seconds(time),
+        sun_elevation_deg: elevation,
+        measured,
+        clear,
+    });
+    Ok((s, c))
+}
+
+/// The step with the sun found and the clear sky scaled by `clear_scale` where it meets a
+/// measurement.
+fn step_at(
+    time: &UtcTime,
+    site: &Site,
+    sun: SunPosition,
+    settings: &Settings,
+    lamp: &Luminaire<4>,
+    measurement: Option<Measurement>,
+    clear_scale: f32,
+) -> Result<Step, SkyError> {
     let full_scale_lux = settings.full_scale_lux;
     if !(full_scale_lux > 0.0 && full_scale_lux.is_finite()) {
         return Err(SkyError::OutOfRange {
@@ -276,12 +346,14 @@ pub fn step(
             max: f32::MAX,
         });
     }
-    let sun = settings.sun.position(time, site)?;
     let daylight = Daylight::new(sun.sun(), settings.aerosol_optical_depth)?;
-    let clear = daylight.global();
+    let clear = daylight.global() * clear_scale;
     let (followed, followed_melanopic) = match settings.light {
-        Light::Global => (clear, daylight.melanopic_edi()),
-        Light::Sky => (daylight.diffuse(), daylight.diffuse_melanopic_edi()),
+        Light::Global => (clear, daylight.melanopic_edi() * clear_scale),
+        Light::Sky => (
+            daylight.diffuse() * clear_scale,
+            daylight.diffuse_melanopic_edi() * clear_scale,
+        ),
     };
     let (illuminance, melanopic_edi, weather) = match measurement {
         None => (followed, followed_melanopic, None),
@@ -305,6 +377,7 @@ pub fn step(
                 diffuse_illuminance: reading.diffuse_illuminance(zenith),
                 direct_illuminance: reading.direct_illuminance(zenith),
                 clear_sky: clear,
+                clear_sky_factor: clear_scale,
                 clear_sky_index: index,
                 overcast_fraction: w,
             };

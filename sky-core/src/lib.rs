@@ -79,6 +79,7 @@
 //! | W/m² to lux (Perez 1990 global, diffuse and direct efficacy) | [`efficacy`] |
 //! | a global reading split into diffuse and direct (Erbs et al. 1982; Engerer2, Engerer 2015) | [`decomposition`] |
 //! | the colour of daylight from clear to overcast (fitted to measured spectra, Balakrishnan 2019); the melanopic DER of daylight (CIE S 026) | [`overcast`] |
+//! | clear periods in a GHI series (Reno & Hansen 2016); the site's clear-sky level learned from them | [`clear_period`], [`self_calibration`] |
 //!
 //! ```
 //! use sky_core::solar::{Site, SunPosition, UtcTime};
@@ -132,6 +133,7 @@
 pub mod aoas;
 pub mod cct;
 pub mod cie;
+pub mod clear_period;
 pub mod color;
 pub mod controller;
 pub mod daylight;
@@ -147,6 +149,7 @@ pub mod overcast;
 pub mod perez;
 pub mod photometry;
 pub mod preetham;
+pub mod self_calibration;
 pub mod sh;
 pub mod solar;
 

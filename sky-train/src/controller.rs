@@ -8,7 +8,9 @@ use std::io::Write;
 use anyhow::{Context, Result};
 use std::path::Path;
 
-use sky_core::controller::{Measurement, Settings, Step, example_luminaire, step};
+use sky_core::clear_period::Criteria;
+use sky_core::controller::{Measurement, Settings, Step, example_luminaire, step, step_calibrated};
+use sky_core::self_calibration::{Bounds, Calibrated, SelfCalibration};
 use sky_core::solar::{Site, UtcTime};
 
 use crate::captures::manifest::UnixTime;
@@ -42,7 +44,7 @@ pub const SCHEDULE_HEADER: &str = "utc,sun_zenith_deg,sun_azimuth_deg,sun_elevat
 
 /// The columns of `schedule --measurements` after the sun's and the light followed's
 /// ([`MEASURED_HEADER`]).
-pub const MEASURED_COLUMNS: &str = "ghi_wm2,dhi_wm2,dni_wm2,global_lux,diffuse_lux,direct_lux,clear_global_lux,clear_sky_index,sky_type";
+pub const MEASURED_COLUMNS: &str = "ghi_wm2,dhi_wm2,dni_wm2,global_lux,diffuse_lux,direct_lux,clear_global_lux,clear_sky_index,sky_type,clear_sky_factor,clear_window,calibration_status";
 
 /// The CSV header of `schedule --measurements`. `horizontal_lux`, `x`, `y`, `cct_k`, `duv`,
 /// `melanopic_edi_lux` and the RGBW levels are of the light followed (the measured global or
@@ -53,8 +55,13 @@ pub const MEASURED_COLUMNS: &str = "ghi_wm2,dhi_wm2,dni_wm2,global_lux,diffuse_l
 /// `clear_global_lux` the clear sky's global illuminance, `clear_sky_index` the ratio
 /// `global_lux / clear_global_lux`, empty where the clear sky is below
 /// `sky_core::controller::MIN_CLEAR_SKY_LUX` (100 lx); `sky_type` the Perez sky-clearness bin
-/// (1-8, 0 with the sun below the horizon).
-pub const MEASURED_HEADER: &str = "utc,sun_zenith_deg,sun_azimuth_deg,sun_elevation_deg,apparent_zenith_deg,cct_k,duv,horizontal_lux,red,green,blue,white,x,y,melanopic_edi_lux,ghi_wm2,dhi_wm2,dni_wm2,global_lux,diffuse_lux,direct_lux,clear_global_lux,clear_sky_index,sky_type";
+/// (1-8, 0 with the sun below the horizon); `clear_sky_factor` the site's clear-sky level
+/// learned by the self-calibration before this row (`sky_core::self_calibration`; the model's
+/// clear sky times it is `clear_global_lux`; 1 with the calibration off), `clear_window` 1
+/// where the window of readings ending at this row is clear by Reno & Hansen's criteria
+/// (`sky_core::clear_period`), else 0 (empty with the calibration off), `calibration_status`
+/// `learning`, `calibrated`, `drifted` or `sensor-suspect` (empty with it off).
+pub const MEASURED_HEADER: &str = "utc,sun_zenith_deg,sun_azimuth_deg,sun_elevation_deg,apparent_zenith_deg,cct_k,duv,horizontal_lux,red,green,blue,white,x,y,melanopic_edi_lux,ghi_wm2,dhi_wm2,dni_wm2,global_lux,diffuse_lux,direct_lux,clear_global_lux,clear_sky_index,sky_type,clear_sky_factor,clear_window,calibration_status";
 
 /// How a measurement file is laid out.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -469,8 +476,9 @@ fn chromaticity_fields(e: sky_core::Vec3) -> String {
     [number(x), number(y)].join(",")
 }
 
-/// The fields of one measured row after its time ([`MEASURED_HEADER`]).
-fn measured_fields(s: &Step) -> String {
+/// The fields of one measured row after its time ([`MEASURED_HEADER`]), with what the
+/// self-calibration made of it (`None`: the calibration is off).
+fn measured_fields(s: &Step, calibrated: Option<&Calibrated>) -> String {
     let Some(w) = s.weather else {
         return String::new();
     };
@@ -487,47 +495,177 @@ fn measured_fields(s: &Step) -> String {
         number(w.clear_sky.y),
         w.clear_sky_index.map_or_else(String::new, number),
         w.sky_type.to_string(),
+        number(w.clear_sky_factor),
+        calibrated.map_or_else(String::new, |c| {
+            u8::from(c.verdict.window_clear).to_string()
+        }),
+        calibrated.map_or_else(String::new, |c| c.status.name().to_owned()),
     ]
     .join(",")
+}
+
+/// The self-calibration of `schedule --measurements` ([`schedule_measured`]).
+#[derive(Debug, Clone, Default)]
+pub struct CalibrationConfig {
+    /// Learn the site's clear-sky level from the readings' clear periods (off: the model's
+    /// clear sky as it is).
+    pub enabled: bool,
+    /// A state file to start from when it exists, and to write the learned state to at the
+    /// end (atomically).
+    pub state: Option<std::path::PathBuf>,
+}
+
+/// The readings' interval, seconds: the most frequent difference between successive rows'
+/// times (the smallest of equally frequent ones), rounded to the second; 60 without two rows.
+fn interval_of(file: &Path, format: MeasurementFormat) -> Result<u32> {
+    let mut counts: std::collections::BTreeMap<i64, usize> = std::collections::BTreeMap::new();
+    let mut last: Option<f64> = None;
+    read_measurements(file, format, &mut |r| {
+        if let Some(t) = last {
+            #[allow(clippy::cast_possible_truncation)] // seconds between rows
+            let d = (r.unix.0 - t).round() as i64;
+            *counts.entry(d).or_default() += 1;
+        }
+        last = Some(r.unix.0);
+        Ok(())
+    })?;
+    let best = counts
+        .iter()
+        .max_by(|a, b| a.1.cmp(b.1).then(b.0.cmp(a.0)))
+        .map_or(60, |(&d, _)| d);
+    u32::try_from(best)
+        .ok()
+        .filter(|d| (1..=86_400).contains(d))
+        .ok_or_else(|| {
+            ParamError(format!(
+                "--measurements {}: the rows are {best} s apart, outside [1, 86400] s",
+                file.display()
+            ))
+            .into()
+        })
+}
+
+/// Reno & Hansen 2016's criteria for 1-minute readings, Jordan & Hansen 2023's for other
+/// intervals of 1 to 30 minutes.
+fn criteria_for(interval_seconds: u32) -> Result<Criteria, ParamError> {
+    if interval_seconds == 60 {
+        return Ok(Criteria::RENO_HANSEN_2016);
+    }
+    #[allow(clippy::cast_precision_loss)]
+    Criteria::jordan_hansen_2023(interval_seconds as f32 / 60.0).map_err(|_| {
+        ParamError(format!(
+            "--measurements: readings every {interval_seconds} s: the self-calibration's clear-period detection takes readings every 1 to 30 minutes (--no-self-calibration to run without it)"
+        ))
+    })
+}
+
+/// The self-calibration for `config`'s site and the file's interval, from the state file
+/// when there is one.
+fn calibration_for(
+    config: &ScheduleConfig,
+    calibration: &CalibrationConfig,
+    interval_seconds: u32,
+) -> Result<SelfCalibration> {
+    let criteria = criteria_for(interval_seconds)?;
+    #[allow(clippy::cast_possible_truncation)] // degrees
+    let longitude = config.longitude as f32;
+    let bounds = Bounds::DEFAULT;
+    match &calibration.state {
+        Some(path) if path.exists() => {
+            let bytes = crate::csv_input::open(path, 4096)
+                .and_then(|mut f| {
+                    let mut b = Vec::new();
+                    std::io::Read::read_to_end(&mut f, &mut b).map(|_| b)
+                })
+                .map_err(|e| ParamError(format!("--calibration-state {}: {e}", path.display())))?;
+            SelfCalibration::from_bytes(&bytes, criteria, interval_seconds, longitude, bounds)
+                .map_err(|e| {
+                    ParamError(format!(
+                        "--calibration-state {}: refused: {e} (delete the file to start learning anew)",
+                        path.display()
+                    ))
+                    .into()
+                })
+        }
+        _ => Ok(SelfCalibration::new(
+            criteria,
+            interval_seconds,
+            longitude,
+            bounds,
+        )?),
+    }
 }
 
 /// Writes the schedule at the times of the measurement file `file` ([`read_measurements`])
 /// driven by its readings: the columns of [`MEASURED_HEADER`]. The file is read twice, a row
 /// at a time: first every row is checked (parsed and stepped), then the rows are written, so
 /// that a bad row is refused before anything is written and memory stays flat in the number
-/// of rows.
+/// of rows. With `calibration.enabled` the second pass runs the self-calibration over the rows
+/// in order ([`sky_core::controller::step_calibrated`]; the interval is the rows' most frequent
+/// one), and the learned state is written to `calibration.state` at the end.
 ///
 /// # Errors
-/// Bad parameters or a bad reading as a [`ParamError`] naming the file's line.
+/// Bad parameters or a bad reading as a [`ParamError`] naming the file's line; a state file
+/// that cannot be read or is refused; a failed write.
 pub fn schedule_measured(
     config: &ScheduleConfig,
     file: &Path,
     format: MeasurementFormat,
+    calibration: &CalibrationConfig,
     output: &mut dyn Write,
 ) -> Result<()> {
     let site = Site::new(config.latitude, config.longitude, config.elevation)
         .map_err(|e| ParamError(format!("--lat/--lon/--elevation: {e}")))?;
     let lamp = example_luminaire()?;
+    let located = |r: &MeasuredRow, e| {
+        let what = crate::args::describe(e, column_name, " ");
+        ParamError(format!(
+            "--measurements {} line {} ({}): {what}",
+            file.display(),
+            r.line,
+            r.unix.rfc3339()
+        ))
+    };
     let run = |r: &MeasuredRow| {
-        step(&r.time, &site, &config.settings, &lamp, Some(r.measurement)).map_err(|e| {
-            let what = crate::args::describe(e, column_name, " ");
-            ParamError(format!(
-                "--measurements {} line {} ({}): {what}",
-                file.display(),
-                r.line,
-                r.unix.rfc3339()
-            ))
-        })
+        step(&r.time, &site, &config.settings, &lamp, Some(r.measurement))
+            .map_err(|e| located(r, e))
     };
     read_measurements(file, format, &mut |r| {
         run(r).map(|_| ()).map_err(Into::into)
     })?;
+    // Readings more than 30 minutes apart (or less than one): no clear-period detection, so
+    // no calibration, unless a state file asks for one (then its error).
+    let mut learner = if calibration.enabled {
+        let interval = interval_of(file, format)?;
+        match calibration_for(config, calibration, interval) {
+            Err(_) if calibration.state.is_none() && !(60..=1800).contains(&interval) => None,
+            other => Some(other?),
+        }
+    } else {
+        None
+    };
     writeln!(output, "{MEASURED_HEADER}")?;
     read_measurements(file, format, &mut |r| {
-        let s = run(r)?;
-        writeln!(output, "{},{}", r.unix.rfc3339(), measured_fields(&s))?;
+        let line = match learner.as_mut() {
+            Some(cal) => {
+                let (s, c) =
+                    step_calibrated(&r.time, &site, &config.settings, &lamp, r.measurement, cal)
+                        .map_err(|e| located(r, e))?;
+                measured_fields(&s, Some(&c))
+            }
+            None => measured_fields(&run(r)?, None),
+        };
+        writeln!(output, "{},{line}", r.unix.rfc3339())?;
         Ok(())
-    })
+    })?;
+    if let (Some(cal), Some(path)) = (&learner, &calibration.state) {
+        let bytes = cal.to_bytes();
+        crate::output_path::write_atomically(path, |f| {
+            std::io::Write::write_all(f, &bytes)?;
+            Ok(())
+        })?;
+    }
+    Ok(())
 }
 
 /// The file's column for a sky-core parameter.

@@ -10,7 +10,9 @@ use crate::args::{date, elevation, in_range, latitude, longitude};
 use sky_core::controller::{Decomposition, Light, Settings};
 use sky_core::solar::SunAlgorithm;
 
-use crate::controller::{MeasurementFormat, ScheduleConfig, schedule, schedule_measured};
+use crate::controller::{
+    CalibrationConfig, MeasurementFormat, ScheduleConfig, schedule, schedule_measured,
+};
 
 /// `schedule`'s arguments.
 #[derive(Args)]
@@ -35,7 +37,10 @@ pub struct ScheduleArgs {
     /// measured light through Perez's efficacies); clear_global_lux (the clear sky's);
     /// clear_sky_index (global_lux over clear_global_lux, empty where the clear sky is below
     /// 100 lx, at night); sky_type (the Perez sky-clearness bin, 1 overcast to 8 clear; 0 with
-    /// the sun below the horizon).
+    /// the sun below the horizon); clear_sky_factor (the self-calibration's learned clear-sky
+    /// level: clear_global_lux is the model's times it), clear_window (1 where the readings'
+    /// window ending at the row is clear by Reno and Hansen's criteria, else 0) and
+    /// calibration_status (learning, calibrated, drifted, sensor-suspect).
     #[arg(long, value_name = "FILE")]
     pub measurements: Option<PathBuf>,
     /// The layout of --measurements: csv (the header above), surfrad (a NOAA SURFRAD daily
@@ -69,6 +74,24 @@ pub struct ScheduleArgs {
     /// diffuse irradiance.
     #[arg(long, value_enum, value_name = "MODEL", default_value_t = DecompositionArg::Erbs)]
     pub decomposition: DecompositionArg,
+    /// Run without the self-calibration: the clear sky (clear_global_lux, clear_sky_index)
+    /// stays the model's (clear_sky_factor 1; clear_window and calibration_status empty). By
+    /// default the site's clear-sky level is learned from the readings' clear periods (Reno and
+    /// Hansen 2016's criteria; Jordan and Hansen 2023's for readings 2 to 30 minutes apart),
+    /// one figure per clear day in four bands of sun elevation, bounded (0.75 to 1.6; beyond:
+    /// calibration_status sensor-suspect), and applied from the next day on; readings more
+    /// than 30 minutes apart are not calibrated (the columns as with this flag).
+    #[arg(long, requires = "measurements")]
+    pub no_self_calibration: bool,
+    /// A file holding the self-calibration's learned state (36 bytes): read at the start when
+    /// it exists (a corrupted or foreign file is refused), written at the end (atomically).
+    #[arg(
+        long,
+        value_name = "FILE",
+        requires = "measurements",
+        conflicts_with = "no_self_calibration"
+    )]
+    pub calibration_state: Option<PathBuf>,
     /// Horizontal illuminance in lux at which the luminaire gives its full output (1 to 200000).
     #[arg(long, value_name = "LUX", default_value_t = 10_000.0, value_parser = full_scale_lux)]
     pub full_scale_lux: f32,
@@ -156,7 +179,18 @@ pub fn run(args: &ScheduleArgs, output: &mut dyn Write) -> Result<()> {
                 FormatArg::Surfrad => MeasurementFormat::Surfrad,
                 FormatArg::Midc => MeasurementFormat::Midc,
             };
-            schedule_measured(&config, file, format, &mut out)?;
+            if let Some(state) = &args.calibration_state {
+                crate::output_path::file(
+                    "--calibration-state",
+                    state,
+                    crate::output_path::Folder::Existing,
+                )?;
+            }
+            let calibration = CalibrationConfig {
+                enabled: !args.no_self_calibration,
+                state: args.calibration_state.clone(),
+            };
+            schedule_measured(&config, file, format, &calibration, &mut out)?;
         }
         None => schedule(&config, &mut out)?,
     }
