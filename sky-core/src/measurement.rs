@@ -118,7 +118,7 @@ impl Reading {
 pub const EFFICACY_ITERATIONS: usize = 8;
 
 /// A first guess of the global efficacy, lm/W.
-const FIRST_EFFICACY: f32 = 110.0;
+pub const FIRST_EFFICACY: f32 = 110.0;
 
 /// The most negative irradiance reading taken for a sensor's thermal offset and counted as 0,
 /// W/m² (as a magnitude: readings down to −10 W/m² count as 0; [`Measurement`]).

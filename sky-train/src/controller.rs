@@ -8,7 +8,9 @@ use std::io::Write;
 use anyhow::{Context, Result};
 use std::path::Path;
 
-use sky_core::controller::{Measurement, Settings, Step, example_luminaire, step};
+use sky_core::controller::{
+    History, Measurement, Settings, Step, example_luminaire, step, step_with_history,
+};
 use sky_core::solar::{Site, UtcTime};
 
 use crate::captures::manifest::UnixTime;
@@ -48,7 +50,7 @@ pub const MEASURED_COLUMNS: &str = "ghi_wm2,dhi_wm2,dni_wm2,global_lux,diffuse_l
 /// `melanopic_edi_lux` and the RGBW levels are of the light followed (the measured global or
 /// diffuse light with its colour under cloud); `ghi_wm2` the reading (or a lux reading over
 /// Perez's global efficacy), `dhi_wm2` the file's diffuse where it has one and else the split
-/// of the settings' separation model (Erbs by default, `--decomposition`), `dni_wm2` the direct normal of that split; `global_lux`, `diffuse_lux` and
+/// of the settings' separation model (DIRINT by default, `--decomposition`), `dni_wm2` the direct normal of that split; `global_lux`, `diffuse_lux` and
 /// `direct_lux` (on the horizontal plane) the measured light through Perez's efficacies;
 /// `clear_global_lux` the clear sky's global illuminance, `clear_sky_index` the ratio
 /// `global_lux / clear_global_lux`, empty where the clear sky is below
@@ -508,8 +510,17 @@ pub fn schedule_measured(
     let site = Site::new(config.latitude, config.longitude, config.elevation)
         .map_err(|e| ParamError(format!("--lat/--lon/--elevation: {e}")))?;
     let lamp = example_luminaire()?;
-    let run = |r: &MeasuredRow| {
-        step(&r.time, &site, &config.settings, &lamp, Some(r.measurement)).map_err(|e| {
+    // DIRINT's stability index: each row against the row before (one pass at a time).
+    let run = |r: &MeasuredRow, history: &mut History| {
+        step_with_history(
+            &r.time,
+            &site,
+            &config.settings,
+            &lamp,
+            Some(r.measurement),
+            history,
+        )
+        .map_err(|e| {
             let what = crate::args::describe(e, column_name, " ");
             ParamError(format!(
                 "--measurements {} line {} ({}): {what}",
@@ -519,12 +530,14 @@ pub fn schedule_measured(
             ))
         })
     };
+    let mut history = History::new();
     read_measurements(file, format, &mut |r| {
-        run(r).map(|_| ()).map_err(Into::into)
+        run(r, &mut history).map(|_| ()).map_err(Into::into)
     })?;
     writeln!(output, "{MEASURED_HEADER}")?;
+    let mut history = History::new();
     read_measurements(file, format, &mut |r| {
-        let s = run(r)?;
+        let s = run(r, &mut history)?;
         writeln!(output, "{},{}", r.unix.rfc3339(), measured_fields(&s))?;
         Ok(())
     })

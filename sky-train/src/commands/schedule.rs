@@ -62,12 +62,14 @@ pub struct ScheduleArgs {
     /// of the global light of sun and sky.
     #[arg(long)]
     pub sky_only: bool,
-    /// The separation model splitting a GHI-only reading into diffuse and direct: erbs (Erbs et
-    /// al. 1982), engerer2 (Engerer 2015's coefficients) or engerer2-global (Engerer2 with
-    /// Bright and Engerer's 2019 world-wide 1-minute coefficients); Engerer2's clear sky is the
-    /// schedule's (--aod) and must fit the site. docs/weather.md compares them with measured
-    /// diffuse irradiance.
-    #[arg(long, value_enum, value_name = "MODEL", default_value_t = DecompositionArg::Erbs)]
+    /// The separation model splitting a GHI-only reading into diffuse and direct: dirint
+    /// (Perez et al. 1992, at the site's pressure (--elevation), with each reading's stability
+    /// against the row before), dirindex (Perez et al. 2002: DIRINT scaled to the clear sky's
+    /// beam), erbs (Erbs et al. 1982), engerer2 (Engerer 2015's coefficients) or
+    /// engerer2-global (Engerer2 with Bright and Engerer's 2019 world-wide 1-minute
+    /// coefficients); the clear sky of dirindex and engerer2 is the schedule's (--aod) and must
+    /// fit the site. docs/weather.md compares them with measured diffuse irradiance.
+    #[arg(long, value_enum, value_name = "MODEL", default_value_t = DecompositionArg::Dirint)]
     pub decomposition: DecompositionArg,
     /// Horizontal illuminance in lux at which the luminaire gives its full output (1 to 200000).
     #[arg(long, value_name = "LUX", default_value_t = 10_000.0, value_parser = full_scale_lux)]
@@ -77,6 +79,10 @@ pub struct ScheduleArgs {
 /// `--decomposition`.
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum DecompositionArg {
+    /// DIRINT, Perez et al. 1992.
+    Dirint,
+    /// DIRINDEX, Perez et al. 2002.
+    Dirindex,
     /// Engerer2, Bright and Engerer's 2019 world-wide 1-minute coefficients.
     Engerer2Global,
     /// Engerer2, Engerer 2015's coefficients.
@@ -145,6 +151,8 @@ pub fn run(args: &ScheduleArgs, output: &mut dyn Write) -> Result<()> {
                 DecompositionArg::Engerer2Global => Decomposition::Engerer2Global,
                 DecompositionArg::Engerer2 => Decomposition::Engerer2,
                 DecompositionArg::Erbs => Decomposition::Erbs,
+                DecompositionArg::Dirint => Decomposition::Dirint,
+                DecompositionArg::Dirindex => Decomposition::Dirindex,
             },
         },
     };
