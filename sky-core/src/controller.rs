@@ -214,7 +214,7 @@ pub fn clear_sky_direct_normal_irradiance(
     sun_zenith: f32,
     day_of_year: u32,
 ) -> f32 {
-    if !(sun_zenith <= core::f32::consts::FRAC_PI_2) {
+    if sun_zenith.is_nan() || sun_zenith > core::f32::consts::FRAC_PI_2 {
         return 0.0;
     }
     let condition = Measurement::GlobalIlluminance(clear_lux)
@@ -327,18 +327,28 @@ fn separation(
     let pressure = split::pressure_from_elevation(site.elevation() as f32);
     let i0 = solar::extraterrestrial_irradiance(day);
     let clear_global = || clear_sky_irradiance(clear_lux, sun_zenith, day);
-    // The stability index needs only the k_t' of this reading and the clear sky's.
-    let minute = minutes_since_2000(time);
-    let kt_prime = split::kt_prime(global_irradiance_of(m), sun_zenith, i0, pressure);
+    // DIRINT's and DIRINDEX's stability index: this reading's k_t' and the clear sky's against
+    // the history's (the other models neither use nor keep it).
+    let uses_history = matches!(
+        decomposition,
+        Decomposition::Dirint | Decomposition::Dirindex
+    );
     let uses_clear = decomposition == Decomposition::Dirindex;
     let clear = if uses_clear { clear_global() } else { 0.0 };
-    let clear_kt_prime = split::kt_prime(clear, sun_zenith, i0, pressure);
-    let (stability, clear_stability) = history.stability(minute, kt_prime, clear_kt_prime);
-    let last = up.then_some(LastReading {
-        minute,
-        kt_prime,
-        clear_kt_prime,
-    });
+    let (stability, clear_stability, last) = if uses_history {
+        let minute = minutes_since_2000(time);
+        let kt_prime = split::kt_prime(global_irradiance_of(m), sun_zenith, i0, pressure);
+        let clear_kt_prime = split::kt_prime(clear, sun_zenith, i0, pressure);
+        let (stability, clear_stability) = history.stability(minute, kt_prime, clear_kt_prime);
+        let last = up.then_some(LastReading {
+            minute,
+            kt_prime,
+            clear_kt_prime,
+        });
+        (stability, clear_stability, last)
+    } else {
+        (None, None, None)
+    };
     let coefficients = match decomposition {
         Decomposition::Erbs => return (Separation::Erbs, last),
         Decomposition::Dirint => {
