@@ -10,8 +10,11 @@ their paths:
 
     python3 -m venv /tmp/venv && /tmp/venv/bin/pip install pvlib==0.16.1
     cargo build -p sky-train
-    /tmp/venv/bin/python tests/reference/separation_check.py target/debug/sky-train \
+    /tmp/venv/bin/python tests/reference/separation_check.py [--every N] target/debug/sky-train \
         dtu_2015_06.csv dtu_2016_03.csv ...
+
+With `--every N` only every N-th minute is kept, as a controller stepping every N minutes sees
+the readings (DIRINT's stability index is then between readings N minutes apart).
 
 For each month, the GHI column goes to `sky-train schedule --measurements` (the project's
 split, each row against the row before) once per `--decomposition`; the output's `dhi_wm2` is
@@ -86,6 +89,7 @@ def dirindex_causal(ghi, cs, zen, times, pressure):
             disc["kt"], disc["airmass"], max_clearness_index=1)
         delta = (ktp - ktp.shift(1)).abs()
         gap = pd.Series(times).diff().dt.total_seconds().values > 90 * 60
+        gap[0] = True
         delta[gap] = np.nan
         delta = delta.fillna(-1)
         coeffs = pvlib.irradiance._dirint_coeffs(
@@ -98,23 +102,17 @@ def dirindex_causal(ghi, cs, zen, times, pressure):
     return np.where(zen > 87, ghi, ghi - beam)
 
 
-def month(binary, path):
+def month(binary, path, every):
     raw = pd.read_csv(path, index_col=0, parse_dates=True)
     raw = raw.dropna(subset=["GHI", "DHI", "DNI"])
     raw = raw[raw.GHI > -10]
+    location = pvlib.location.Location(LAT, LON, altitude=ELEV)
+    # Each day's sky from every minute.
     times = pd.DatetimeIndex(raw.index).tz_localize("UTC")
-    ghi, dhi, dni = raw.GHI.values, raw.DHI.values, raw.DNI.values
     sp = pvlib.solarposition.get_solarposition(times, LAT, LON, ELEV)
-    zen = sp.zenith.values
-    cs = pvlib.location.Location(LAT, LON, altitude=ELEV).get_clearsky(
-        times, model="ineichen", solar_position=sp)
-    pressure = pvlib.atmosphere.alt2pres(ELEV)
-    split = {m: cli_split(binary, times, ghi, m) for m in MODELS}
-    g0 = np.maximum(ghi, 0)
-    split["dirindex, Ineichen"] = dirindex_causal(g0, cs, zen, times, pressure)
-    for m, k in ENGERER2.items():
-        split[f"{m}, Ineichen"] = engerer2(g0, cs.ghi.values, zen, times, k)
-    rows = []
+    cs = location.get_clearsky(times, model="ineichen", solar_position=sp)
+    zen, ghi = sp.zenith.values, raw.GHI.values
+    skies = {}
     for d in sorted(set(times.date)):
         sel = times.date == d
         day = sel & (zen < 85)
@@ -128,11 +126,27 @@ def month(binary, path):
             cf = clear.values[zen[sel] < 85].mean()
         except NotImplementedError:  # a gap in the day's minutes
             cf = np.nan
-        sky = "clear" if (csi > 0.85 and cf > 0.85) else "overcast" if csi < 0.45 else "broken"
-        ratio = ghi / np.maximum(dhi + dni * np.cos(np.radians(zen)), 1e-3)
-        qc = np.abs(ratio - 1) <= np.where(zen < 75, 0.08, 0.15)
-        m = sel & (zen < 90) & (ghi > 50) & qc
-        if m.sum() < 40:
+        skies[d] = "clear" if (csi > 0.85 and cf > 0.85) else (
+            "overcast" if csi < 0.45 else "broken")
+    # The readings the splits see: every `every`-th minute.
+    raw = raw[raw.index.minute % every == 0]
+    times = pd.DatetimeIndex(raw.index).tz_localize("UTC")
+    ghi, dhi, dni = raw.GHI.values, raw.DHI.values, raw.DNI.values
+    sp = pvlib.solarposition.get_solarposition(times, LAT, LON, ELEV)
+    zen = sp.zenith.values
+    cs = location.get_clearsky(times, model="ineichen", solar_position=sp)
+    pressure = pvlib.atmosphere.alt2pres(ELEV)
+    split = {m: cli_split(binary, times, ghi, m) for m in MODELS}
+    g0 = np.maximum(ghi, 0)
+    split["dirindex, Ineichen"] = dirindex_causal(g0, cs, zen, times, pressure)
+    for m, k in ENGERER2.items():
+        split[f"{m}, Ineichen"] = engerer2(g0, cs.ghi.values, zen, times, k)
+    ratio = ghi / np.maximum(dhi + dni * np.cos(np.radians(zen)), 1e-3)
+    qc = np.abs(ratio - 1) <= np.where(zen < 75, 0.08, 0.15)
+    rows = []
+    for d, sky in skies.items():
+        m = (times.date == d) & (zen < 90) & (ghi > 50) & qc
+        if m.sum() < 40 // every:
             continue
         mean = dhi[m].mean()
         row = dict(day=str(d), sky=sky, minutes=int(m.sum()), kd=dhi[m].mean() / ghi[m].mean())
@@ -144,10 +158,14 @@ def month(binary, path):
 
 
 def main():
-    binary, paths = sys.argv[1], sys.argv[2:]
+    args = sys.argv[1:]
+    every = 1
+    if args[0] == "--every":
+        every, args = int(args[1]), args[2:]
+    binary, paths = args[0], args[1:]
     rows = []
     for p in paths:
-        rows += month(binary, p)
+        rows += month(binary, p, every)
     res = pd.DataFrame(rows)
     names = [c for c in res.columns if isinstance(res[c].iloc[0], tuple)]
     for _, r in res.iterrows():
