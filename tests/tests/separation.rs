@@ -339,7 +339,7 @@ impl Split {
         match self {
             Split::Controller(d) => name(d).to_owned(),
             Split::Alone(d) => format!("{}, alone", name(d)),
-            Split::Ineichen(d, scale) if scale == 1.0 => format!("{}, Ineichen", name(d)),
+            Split::Ineichen(d, 1.0) => format!("{}, Ineichen", name(d)),
             Split::Ineichen(d, scale) => format!("{}, Ineichen x{scale}", name(d)),
         }
     }
