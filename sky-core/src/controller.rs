@@ -9,9 +9,10 @@
 //! under cloud ([`crate::overcast`]), from the clear-sky index (measured over clear-sky global
 //! illuminance); the sky type is the Perez sky-clearness bin ([`crate::perez`]), from the diffuse
 //! and direct parts of the measurement, split by a separation model when only the global is known
-//! ([`Settings::decomposition`]: Erbs's correlation by default, or Engerer2 with the step's
-//! clear sky; [`crate::decomposition`]), and W/m² become lux by Perez's global efficacy
-//! ([`crate::efficacy`]).
+//! ([`Settings::decomposition`]: Perez's DIRINT by default, with the stability index of the
+//! reading before when the caller keeps a [`History`] ([`step_with_history`]); DIRINDEX or
+//! Engerer2 with the step's clear sky, or Erbs's correlation; [`crate::decomposition`]), and
+//! W/m² become lux by Perez's global efficacy ([`crate::efficacy`]).
 //!
 //! The one definition shared by `sky-train schedule` on the host and the controller firmware
 //! example (`firmware/src/bin/controller.rs`, checked against this same function run on the
@@ -23,14 +24,18 @@ use crate::cct::Cct;
 use crate::color::{self, Xyy};
 use crate::daylight::{self, Daylight};
 pub use crate::decomposition::Decomposition;
-use crate::decomposition::{self as split, ENGERER2_2015, ENGERER2_2019_1MIN, Separation};
+use crate::decomposition::{
+    self as split, ClearSky, ENGERER2_2015, ENGERER2_2019_1MIN, MAX_STABILITY_GAP_MINUTES,
+    Separation,
+};
+use crate::efficacy::{DEFAULT_PRECIPITABLE_WATER, Efficacy};
 use crate::error::SkyError;
 use crate::led::{Channel, Drive, Luminaire};
 pub use crate::measurement::Measurement;
 use crate::overcast;
 use crate::perez::SkyCondition;
 use crate::self_calibration::{self, Calibrated, Observation, SelfCalibration};
-use crate::solar::{Site, SunAlgorithm, SunPosition, UtcTime};
+use crate::solar::{self, Site, SunAlgorithm, SunPosition, UtcTime};
 
 /// The example RGBW luminaire: typical LED chromaticities (CIE 1931 x, y) and outputs in lumens
 /// at full drive: red 625 nm (0.700, 0.295; 300 lm), green 525 nm (0.170, 0.700; 600 lm), royal
@@ -127,7 +132,9 @@ pub struct Settings {
     /// [`SunAlgorithm::Spa`] for other years or SPA's precision.
     pub sun: SunAlgorithm,
     /// The separation model that splits a global reading without a diffuse one
-    /// ([`Decomposition`]); Engerer2's clear sky is this step's ([`clear_sky_irradiance`]).
+    /// ([`Decomposition`]); DIRINT's pressure is the site's elevation's
+    /// ([`split::pressure_from_elevation`]); the clear sky of DIRINDEX and Engerer2 is this
+    /// step's ([`clear_sky_irradiance`], [`clear_sky_direct_normal_irradiance`]).
     pub decomposition: Decomposition,
 }
 
@@ -200,31 +207,200 @@ pub fn clear_sky_irradiance(clear_lux: f32, sun_zenith: f32, day_of_year: u32) -
         .map_or(0.0, |r| r.global_irradiance)
 }
 
-/// The separation of a global reading at `time`, `site`, with the sun at `sun_zenith`
-/// (radians) and the clear sky's global illuminance `clear_lux`, by `decomposition`.
+/// The clear sky's direct normal irradiance, W/m², for its direct normal illuminance
+/// `direct_normal_lux` (lx, [`Daylight::direct_normal`]) and global illuminance `clear_lux`
+/// (lx) with the sun at zenith `sun_zenith` (radians) on day `day_of_year`: the illuminance
+/// over Perez's direct efficacy of the sky condition that [`clear_sky_irradiance`] finds for
+/// `clear_lux`. 0 with the sun down, a zero efficacy or an illuminance the reading refuses.
+#[must_use]
+pub fn clear_sky_direct_normal_irradiance(
+    direct_normal_lux: f32,
+    clear_lux: f32,
+    sun_zenith: f32,
+    day_of_year: u32,
+) -> f32 {
+    if sun_zenith.is_nan() || sun_zenith > core::f32::consts::FRAC_PI_2 {
+        return 0.0;
+    }
+    let condition = Measurement::GlobalIlluminance(clear_lux)
+        .read(sun_zenith, day_of_year)
+        .ok()
+        .and_then(|r| r.condition);
+    let k = condition.map_or(0.0, |c| {
+        Efficacy::new(&c, sun_zenith.max(0.0), DEFAULT_PRECIPITABLE_WATER).direct
+    });
+    if k > 0.0 && direct_normal_lux > 0.0 {
+        (direct_normal_lux / k).min(f32::MAX)
+    } else {
+        0.0
+    }
+}
+
+/// What DIRINT's stability index needs of the readings before ([`split::stability_index`],
+/// Perez et al. 1992, eq. 3): the last reading's zenith-independent clearness index, the clear
+/// sky's at the same time (for DIRINDEX), and when it was taken. A luminaire following a
+/// sensor keeps one across its steps ([`step_with_history`]); it is 16 bytes and needs no
+/// more than RAM (after a restart the first reading has no stability index, as after a gap of
+/// more than [`MAX_STABILITY_GAP_MINUTES`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct History {
+    last: Option<LastReading>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct LastReading {
+    /// Minutes since 2000-01-01 00:00 UTC.
+    minute: f64,
+    kt_prime: f32,
+    clear_kt_prime: f32,
+}
+
+impl History {
+    /// No reading before.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self { last: None }
+    }
+
+    /// The stability index of a reading at `minute` with k_t' `kt_prime`, and of the clear
+    /// sky's `clear_kt_prime`, against the last reading: `None` without one, or when it is not
+    /// before `minute` or more than [`MAX_STABILITY_GAP_MINUTES`] before.
+    fn stability(
+        &self,
+        minute: f64,
+        kt_prime: f32,
+        clear_kt_prime: f32,
+    ) -> (Option<f32>, Option<f32>) {
+        match self.last {
+            Some(l)
+                if minute > l.minute
+                    && minute - l.minute <= f64::from(MAX_STABILITY_GAP_MINUTES) =>
+            {
+                (
+                    split::stability_index(kt_prime, Some(l.kt_prime), None),
+                    split::stability_index(clear_kt_prime, Some(l.clear_kt_prime), None),
+                )
+            }
+            _ => (None, None),
+        }
+    }
+}
+
+/// Minutes since 2000-01-01 00:00 UTC of `time` (proleptic Gregorian days, Hinnant's
+/// days-from-civil).
+fn minutes_since_2000(time: &UtcTime) -> f64 {
+    let (y, m) = (i64::from(time.year()), i64::from(time.month()));
+    let y = if m <= 2 { y - 1 } else { y };
+    let era = y.div_euclid(400);
+    let yoe = y - era * 400;
+    let mp = (m + 9) % 12;
+    let doy = (153 * mp + 2) / 5 + i64::from(time.day()) - 1;
+    let doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+    // 730,425: days from 0000-03-01 to 2000-01-01 in this counting.
+    let days = era * 146_097 + doe - 730_425;
+    #[allow(clippy::cast_precision_loss)] // days within ±3,000 years: exact in f64
+    let day_minutes = days as f64 * 1440.0;
+    day_minutes + f64::from(time.hour()) * 60.0 + f64::from(time.minute()) + time.second() / 60.0
+}
+
+/// The global irradiance a measurement tells before its split, W/m²: a lux reading through the
+/// first-guess efficacy ([`crate::measurement::FIRST_EFFICACY`]); for the stability index only,
+/// where a common factor between neighbouring readings cancels.
+fn global_irradiance_of(m: &Measurement) -> f32 {
+    match *m {
+        Measurement::GlobalIrradiance(g) | Measurement::Irradiance { global: g, .. } => g,
+        Measurement::GlobalIlluminance(lux) => lux / crate::measurement::FIRST_EFFICACY,
+    }
+}
+
+/// The separation of a global reading `m` at `time`, `site`, with the sun at `sun_zenith`
+/// (radians) and the clear sky `daylight`, by `decomposition`, and the history's entry for
+/// this reading (`None` with the sun down).
 fn separation(
     decomposition: Decomposition,
+    m: &Measurement,
     time: &UtcTime,
     site: &Site,
     sun_zenith: f32,
-    clear_lux: f32,
-) -> Separation {
+    daylight: &Daylight,
+    history: &History,
+) -> (Separation, Option<LastReading>) {
+    let day = time.day_of_year();
+    let clear_lux = daylight.global().y;
+    let up = sun_zenith <= core::f32::consts::FRAC_PI_2;
+    #[allow(clippy::cast_possible_truncation)] // metres
+    let pressure = split::pressure_from_elevation(site.elevation() as f32);
+    let i0 = solar::extraterrestrial_irradiance(day);
+    let clear_global = || clear_sky_irradiance(clear_lux, sun_zenith, day);
+    // DIRINT's and DIRINDEX's stability index: this reading's k_t' and the clear sky's against
+    // the history's (the other models neither use nor keep it).
+    let uses_history = matches!(
+        decomposition,
+        Decomposition::Dirint | Decomposition::Dirindex
+    );
+    let uses_clear = decomposition == Decomposition::Dirindex;
+    let clear = if uses_clear { clear_global() } else { 0.0 };
+    let (stability, clear_stability, last) = if uses_history {
+        let minute = minutes_since_2000(time);
+        let kt_prime = split::kt_prime(global_irradiance_of(m), sun_zenith, i0, pressure);
+        let clear_kt_prime = split::kt_prime(clear, sun_zenith, i0, pressure);
+        let (stability, clear_stability) = history.stability(minute, kt_prime, clear_kt_prime);
+        let last = up.then_some(LastReading {
+            minute,
+            kt_prime,
+            clear_kt_prime,
+        });
+        (stability, clear_stability, last)
+    } else {
+        (None, None, None)
+    };
     let coefficients = match decomposition {
-        Decomposition::Erbs => return Separation::Erbs,
+        Decomposition::Erbs => return (Separation::Erbs, last),
+        Decomposition::Dirint => {
+            return (
+                Separation::Dirint {
+                    pressure,
+                    stability,
+                },
+                last,
+            );
+        }
+        Decomposition::Dirindex => {
+            let direct_normal = clear_sky_direct_normal_irradiance(
+                daylight.direct_normal().y,
+                clear_lux,
+                sun_zenith,
+                day,
+            );
+            return (
+                Separation::Dirindex {
+                    pressure,
+                    stability,
+                    clear: ClearSky {
+                        global: clear,
+                        direct_normal,
+                        stability: clear_stability,
+                    },
+                },
+                last,
+            );
+        }
         Decomposition::Engerer2 => ENGERER2_2015,
         Decomposition::Engerer2Global => ENGERER2_2019_1MIN,
     };
-    let day = time.day_of_year();
     #[allow(clippy::cast_precision_loss, clippy::cast_possible_truncation)] // hours, degrees
     let utc_hours =
         time.hour() as f32 + time.minute() as f32 / 60.0 + time.second() as f32 / 3600.0;
     #[allow(clippy::cast_possible_truncation)]
     let longitude = site.longitude() as f32;
-    Separation::Engerer2 {
-        clear_global: clear_sky_irradiance(clear_lux, sun_zenith, day),
-        solar_time: split::apparent_solar_time(utc_hours, longitude, day),
-        coefficients,
-    }
+    (
+        Separation::Engerer2 {
+            clear_global: clear_global(),
+            solar_time: split::apparent_solar_time(utc_hours, longitude, day),
+            coefficients,
+        },
+        last,
+    )
 }
 
 /// The controller's step at `time` for `site`: the clear-sky daylight ([`Daylight`]) or what
@@ -271,35 +447,76 @@ pub fn step(
     lamp: &Luminaire<4>,
     measurement: Option<Measurement>,
 ) -> Result<Step, SkyError> {
-    let sun = settings.sun.position(time, site)?;
-    step_at(time, site, sun, settings, lamp, measurement, 1.0)
+    step_with_history(time, site, settings, lamp, measurement, &mut History::new())
 }
 
-/// [`step`] with a measurement, its clear sky scaled by the site's clear-sky level that
-/// `calibration` has learned ([`crate::self_calibration`]; the factor at the sun's elevation,
-/// learned before this reading), and the reading then given to `calibration`: the measured
-/// global irradiance against the unscaled clear sky's ([`clear_sky_irradiance`]). Returns the
-/// step (its [`Weather::clear_sky_factor`] the factor used) and what the calibration made of the
-/// reading. Call it at the interval the calibration was made for, in time order.
+/// [`step`] for one reading of a series: `history` holds what DIRINT's stability index needs of
+/// the reading before ([`History`]), and is updated with this one (a reading that is refused
+/// leaves it as it was; a step with the sun down or without a measurement forgets it). With
+/// [`Decomposition::Dirint`] or [`Decomposition::Dirindex`], readings a minute to an hour apart
+/// split better this way than one by one (docs/weather.md); the other models do not use it.
+///
+/// ```
+/// use sky_core::controller::{example_luminaire, step_with_history, History, Measurement, Settings};
+/// use sky_core::solar::{Site, UtcTime};
+///
+/// let tucson = Site::new(32.23, -110.96, 786.0)?;
+/// let (lamp, settings) = (example_luminaire()?, Settings::default());
+/// let mut history = History::new();
+/// let mut diffuse = Vec::new();
+/// for (minute, ghi) in [(0, 826.0), (1, 826.6)] {
+///     let time = UtcTime::new(2018, 10, 18, 19, 24 + minute, 0.0)?;
+///     let s = step_with_history(&time, &tucson, &settings, &lamp,
+///         Some(Measurement::GlobalIrradiance(ghi)), &mut history)?;
+///     diffuse.push(s.weather.expect("measured").diffuse_irradiance);
+/// }
+/// // A steady clear sky: the second reading is known to be stable, so less of it is diffuse.
+/// assert!(diffuse[1] < diffuse[0] && diffuse[1] < 0.12 * 826.6);
+/// # Ok::<(), sky_core::SkyError>(())
+/// ```
+///
+/// # Errors
+/// Those of [`step`].
+#[inline] // as `step`
+pub fn step_with_history(
+    time: &UtcTime,
+    site: &Site,
+    settings: &Settings,
+    lamp: &Luminaire<4>,
+    measurement: Option<Measurement>,
+    history: &mut History,
+) -> Result<Step, SkyError> {
+    let sun = settings.sun.position(time, site)?;
+    step_at(time, site, sun, settings, lamp, measurement, 1.0, history)
+}
+
+/// [`step_with_history`] for a series of measurements whose clear sky is scaled by the site's
+/// clear-sky level that `calibration` has learned ([`crate::self_calibration`]; the factor at
+/// the sun's elevation, learned before this reading), the reading then given to
+/// `calibration`: the measured global irradiance against the unscaled clear sky's
+/// ([`clear_sky_irradiance`]). Returns the step (its [`Weather::clear_sky_factor`] the factor
+/// used) and what the calibration made of the reading. Call it at the interval the calibration
+/// was made for, in time order; `history` is kept as [`step_with_history`] keeps it.
 ///
 /// ```
 /// use sky_core::clear_period::Criteria;
-/// use sky_core::controller::{example_luminaire, step_calibrated, Measurement, Settings};
+/// use sky_core::controller::{example_luminaire, step_calibrated, History, Measurement, Settings};
 /// use sky_core::self_calibration::{Bounds, SelfCalibration, Status};
 /// use sky_core::solar::{Site, UtcTime};
 ///
 /// let site = Site::new(48.21, 16.37, 190.0)?;
 /// let mut cal = SelfCalibration::new(Criteria::RENO_HANSEN_2016, 60, 16.37, Bounds::DEFAULT)?;
+/// let mut history = History::new();
 /// let time = UtcTime::new(2026, 6, 21, 10, 0, 0.0)?;
 /// let (s, c) = step_calibrated(&time, &site, &Settings::default(), &example_luminaire()?,
-///                              Measurement::GlobalIrradiance(820.0), &mut cal)?;
+///                              Measurement::GlobalIrradiance(820.0), &mut cal, &mut history)?;
 /// assert_eq!(s.weather.expect("measured").clear_sky_factor, 1.0); // nothing learned yet
 /// assert_eq!(c.status, Status::Learning);
 /// # Ok::<(), sky_core::SkyError>(())
 /// ```
 ///
 /// # Errors
-/// [`step`]'s.
+/// Those of [`step`].
 pub fn step_calibrated(
     time: &UtcTime,
     site: &Site,
@@ -307,12 +524,22 @@ pub fn step_calibrated(
     lamp: &Luminaire<4>,
     measurement: Measurement,
     calibration: &mut SelfCalibration,
+    history: &mut History,
 ) -> Result<(Step, Calibrated), SkyError> {
     let sun = settings.sun.position(time, site)?;
     #[allow(clippy::cast_possible_truncation)] // degrees
     let elevation = sun.elevation_deg() as f32;
     let factor = calibration.factor(elevation);
-    let s = step_at(time, site, sun, settings, lamp, Some(measurement), factor)?;
+    let s = step_at(
+        time,
+        site,
+        sun,
+        settings,
+        lamp,
+        Some(measurement),
+        factor,
+        history,
+    )?;
     let (measured, clear_lux) = s
         .weather
         .map_or((0.0, 0.0), |w| (w.global_irradiance, s.daylight.global().y));
@@ -326,8 +553,10 @@ pub fn step_calibrated(
     Ok((s, c))
 }
 
-/// The step with the sun found and the clear sky scaled by `clear_scale` where it meets a
-/// measurement.
+/// The step with the sun found, the clear sky scaled by `clear_scale` where it meets a
+/// measurement, and `history` kept ([`step_with_history`]).
+#[allow(clippy::too_many_arguments)]
+#[inline]
 fn step_at(
     time: &UtcTime,
     site: &Site,
@@ -336,6 +565,7 @@ fn step_at(
     lamp: &Luminaire<4>,
     measurement: Option<Measurement>,
     clear_scale: f32,
+    history: &mut History,
 ) -> Result<Step, SkyError> {
     let full_scale_lux = settings.full_scale_lux;
     if !(full_scale_lux > 0.0 && full_scale_lux.is_finite()) {
@@ -356,11 +586,23 @@ fn step_at(
         ),
     };
     let (illuminance, melanopic_edi, weather) = match measurement {
-        None => (followed, followed_melanopic, None),
+        None => {
+            *history = History::new();
+            (followed, followed_melanopic, None)
+        }
         Some(m) => {
             let zenith = sun.sun().zenith();
-            let separation = separation(settings.decomposition, time, site, zenith, clear.y);
+            let (separation, last) = separation(
+                settings.decomposition,
+                &m,
+                time,
+                site,
+                zenith,
+                &daylight,
+                history,
+            );
             let reading = m.read_with(zenith, time.day_of_year(), &separation)?;
+            history.last = last;
             let lux = reading.global_illuminance;
             let index = (clear.y >= MIN_CLEAR_SKY_LUX).then(|| (lux / clear.y).min(f32::MAX));
             // The colour's ratio, continuous at night and 1 for a reading equal to the clear sky.

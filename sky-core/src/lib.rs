@@ -77,7 +77,7 @@
 //! | LED channel levels (RGB, RGBW, warm + cool white), hue-keeping gamut clipping, PWM quantisation | [`led`] |
 //! | all of these for one time and place, as `sky-train schedule` and the firmware compute it, optionally driven by an outdoor sensor | [`controller::step`] |
 //! | W/m² to lux (Perez 1990 global, diffuse and direct efficacy) | [`efficacy`] |
-//! | a global reading split into diffuse and direct (Erbs et al. 1982; Engerer2, Engerer 2015) | [`decomposition`] |
+//! | a global reading split into diffuse and direct (DIRINT, Perez et al. 1992, the default; DIRINDEX, Perez et al. 2002; Erbs et al. 1982; Engerer2, Engerer 2015) | [`decomposition`] |
 //! | the colour of daylight from clear to overcast (fitted to measured spectra, Balakrishnan 2019); the melanopic DER of daylight (CIE S 026) | [`overcast`] |
 //! | clear periods in a GHI series (Reno & Hansen 2016); the site's clear-sky level learned from them | [`clear_period`], [`self_calibration`] |
 //!

@@ -118,7 +118,7 @@ impl Reading {
 pub const EFFICACY_ITERATIONS: usize = 8;
 
 /// A first guess of the global efficacy, lm/W.
-const FIRST_EFFICACY: f32 = 110.0;
+pub const FIRST_EFFICACY: f32 = 110.0;
 
 /// The most negative irradiance reading taken for a sensor's thermal offset and counted as 0,
 /// W/m² (as a magnitude: readings down to −10 W/m² count as 0; [`Measurement`]).
@@ -195,8 +195,9 @@ impl Measurement {
         self.read_with(sun_zenith, day_of_year, &Separation::Erbs)
     }
 
-    /// [`Measurement::read`] with a global reading alone split by `separation` (Erbs's
-    /// correlation or Engerer2 with its clear sky and solar time: [`crate::decomposition`]).
+    /// [`Measurement::read`] with a global reading alone split by `separation` (DIRINT,
+    /// DIRINDEX, Erbs's correlation or Engerer2, with what each needs:
+    /// [`crate::decomposition`]).
     ///
     /// ```
     /// use sky_core::decomposition::{Separation, ENGERER2_2015};
@@ -212,8 +213,8 @@ impl Measurement {
     /// ```
     ///
     /// # Errors
-    /// The bad readings of [`Measurement`], and a bad clear sky or solar time
-    /// ([`decomposition::engerer2`]).
+    /// The bad readings of [`Measurement`], and a bad clear sky, solar time or pressure
+    /// ([`decomposition::engerer2`], [`decomposition::dirint`], [`decomposition::dirindex`]).
     pub fn read_with(
         self,
         sun_zenith: f32,

@@ -9,7 +9,10 @@ use anyhow::{Context, Result};
 use std::path::Path;
 
 use sky_core::clear_period::Criteria;
-use sky_core::controller::{Measurement, Settings, Step, example_luminaire, step, step_calibrated};
+use sky_core::controller::{
+    History, Measurement, Settings, Step, example_luminaire, step, step_calibrated,
+    step_with_history,
+};
 use sky_core::self_calibration::{Bounds, Calibrated, SelfCalibration};
 use sky_core::solar::{Site, UtcTime};
 
@@ -50,7 +53,7 @@ pub const MEASURED_COLUMNS: &str = "ghi_wm2,dhi_wm2,dni_wm2,global_lux,diffuse_l
 /// `melanopic_edi_lux` and the RGBW levels are of the light followed (the measured global or
 /// diffuse light with its colour under cloud); `ghi_wm2` the reading (or a lux reading over
 /// Perez's global efficacy), `dhi_wm2` the file's diffuse where it has one and else the split
-/// of the settings' separation model (Erbs by default, `--decomposition`), `dni_wm2` the direct normal of that split; `global_lux`, `diffuse_lux` and
+/// of the settings' separation model (DIRINT by default, `--decomposition`), `dni_wm2` the direct normal of that split; `global_lux`, `diffuse_lux` and
 /// `direct_lux` (on the horizontal plane) the measured light through Perez's efficacies;
 /// `clear_global_lux` the clear sky's global illuminance, `clear_sky_index` the ratio
 /// `global_lux / clear_global_lux`, empty where the clear sky is below
@@ -626,12 +629,21 @@ pub fn schedule_measured(
             r.unix.rfc3339()
         ))
     };
-    let run = |r: &MeasuredRow| {
-        step(&r.time, &site, &config.settings, &lamp, Some(r.measurement))
-            .map_err(|e| located(r, e))
+    // DIRINT's stability index: each row against the row before (one pass at a time).
+    let run = |r: &MeasuredRow, history: &mut History| {
+        step_with_history(
+            &r.time,
+            &site,
+            &config.settings,
+            &lamp,
+            Some(r.measurement),
+            history,
+        )
+        .map_err(|e| located(r, e))
     };
+    let mut history = History::new();
     read_measurements(file, format, &mut |r| {
-        run(r).map(|_| ()).map_err(Into::into)
+        run(r, &mut history).map(|_| ()).map_err(Into::into)
     })?;
     // Readings more than 30 minutes apart (or less than one): no clear-period detection, so
     // no calibration, unless a state file asks for one (then its error).
@@ -645,15 +657,23 @@ pub fn schedule_measured(
         None
     };
     writeln!(output, "{MEASURED_HEADER}")?;
+    let mut history = History::new();
     read_measurements(file, format, &mut |r| {
         let line = match learner.as_mut() {
             Some(cal) => {
-                let (s, c) =
-                    step_calibrated(&r.time, &site, &config.settings, &lamp, r.measurement, cal)
-                        .map_err(|e| located(r, e))?;
+                let (s, c) = step_calibrated(
+                    &r.time,
+                    &site,
+                    &config.settings,
+                    &lamp,
+                    r.measurement,
+                    cal,
+                    &mut history,
+                )
+                .map_err(|e| located(r, e))?;
                 measured_fields(&s, Some(&c))
             }
-            None => measured_fields(&run(r)?, None),
+            None => measured_fields(&run(r, &mut history)?, None),
         };
         writeln!(output, "{},{line}", r.unix.rfc3339())?;
         Ok(())

@@ -7,7 +7,7 @@
 mod common;
 
 use sky_core::clear_period::{ClearSkyDetector, Criteria};
-use sky_core::controller::{Measurement, Settings, example_luminaire, step_calibrated};
+use sky_core::controller::{History, Measurement, Settings, example_luminaire, step_calibrated};
 use sky_core::self_calibration::{Bounds, SelfCalibration, Status, unix_seconds};
 use sky_core::solar::Site;
 
@@ -159,6 +159,7 @@ fn run(s: &Station, bounds: Bounds, sensor: &dyn Fn(&Row, f64, f64, usize) -> f3
     )
     .expect("calibration");
     let mut days: Vec<(String, f32, Status, Vec<f32>)> = Vec::new();
+    let mut history = History::new();
     for r in &s.rows {
         let time = common::utc(&r.utc);
         let date = r.utc[..10].to_owned();
@@ -175,6 +176,7 @@ fn run(s: &Station, bounds: Bounds, sensor: &dyn Fn(&Row, f64, f64, usize) -> f3
             &lamp,
             Measurement::GlobalIrradiance(reading),
             &mut cal,
+            &mut history,
         )
         .expect("step");
         let w = st.weather.expect("measured");

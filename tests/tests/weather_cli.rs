@@ -221,7 +221,8 @@ fn schedule_measurements_agree_with_the_reference() {
         "{message}"
     );
 
-    // Global only: split by Erbs.
+    // Global only: split by Erbs (the reference chain's; DIRINT, the default, is
+    // tests/tests/separation.rs's).
     let global = dir.path().join("global.csv");
     let mut f = std::fs::File::create(&global).expect("file");
     writeln!(f, "ghi_wm2,utc").expect("write");
@@ -229,7 +230,21 @@ fn schedule_measurements_agree_with_the_reference() {
         writeln!(f, "{g},{t}").expect("write");
     }
     drop(f);
-    let out = schedule_vienna(global.to_str().expect("utf8")).unwrap_or_else(|e| panic!("{}", e.0));
+    let out = run(
+        &[
+            "schedule",
+            "--lat",
+            "48.21",
+            "--lon",
+            "16.37",
+            "--measurements",
+            global.to_str().expect("utf8"),
+            "--decomposition",
+            "erbs",
+        ],
+        "",
+    )
+    .unwrap_or_else(|e| panic!("{}", e.0));
     let mut lines = out.lines();
     let header: Vec<&str> = lines.next().expect("header").split(',').collect();
     assert_eq!(

@@ -67,12 +67,14 @@ pub struct ScheduleArgs {
     /// of the global light of sun and sky.
     #[arg(long)]
     pub sky_only: bool,
-    /// The separation model splitting a GHI-only reading into diffuse and direct: erbs (Erbs et
-    /// al. 1982), engerer2 (Engerer 2015's coefficients) or engerer2-global (Engerer2 with
-    /// Bright and Engerer's 2019 world-wide 1-minute coefficients); Engerer2's clear sky is the
-    /// schedule's (--aod) and must fit the site. docs/weather.md compares them with measured
-    /// diffuse irradiance.
-    #[arg(long, value_enum, value_name = "MODEL", default_value_t = DecompositionArg::Erbs)]
+    /// The separation model splitting a GHI-only reading into diffuse and direct: dirint
+    /// (Perez et al. 1992, at the site's pressure (--elevation), with each reading's stability
+    /// against the row before), dirindex (Perez et al. 2002: DIRINT scaled to the clear sky's
+    /// beam), erbs (Erbs et al. 1982), engerer2 (Engerer 2015's coefficients) or
+    /// engerer2-global (Engerer2 with Bright and Engerer's 2019 world-wide 1-minute
+    /// coefficients); the clear sky of dirindex and engerer2 is the schedule's (--aod) and must
+    /// fit the site. docs/weather.md compares them with measured diffuse irradiance.
+    #[arg(long, value_enum, value_name = "MODEL", default_value_t = DecompositionArg::Dirint)]
     pub decomposition: DecompositionArg,
     /// Run without the self-calibration: the clear sky (clear_global_lux, clear_sky_index)
     /// stays the model's (clear_sky_factor 1; clear_window and calibration_status empty). By
@@ -100,6 +102,10 @@ pub struct ScheduleArgs {
 /// `--decomposition`.
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum DecompositionArg {
+    /// DIRINT, Perez et al. 1992.
+    Dirint,
+    /// DIRINDEX, Perez et al. 2002.
+    Dirindex,
     /// Engerer2, Bright and Engerer's 2019 world-wide 1-minute coefficients.
     Engerer2Global,
     /// Engerer2, Engerer 2015's coefficients.
@@ -168,6 +174,8 @@ pub fn run(args: &ScheduleArgs, output: &mut dyn Write) -> Result<()> {
                 DecompositionArg::Engerer2Global => Decomposition::Engerer2Global,
                 DecompositionArg::Engerer2 => Decomposition::Engerer2,
                 DecompositionArg::Erbs => Decomposition::Erbs,
+                DecompositionArg::Dirint => Decomposition::Dirint,
+                DecompositionArg::Dirindex => Decomposition::Dirindex,
             },
         },
     };
