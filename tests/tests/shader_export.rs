@@ -185,6 +185,34 @@ fn bad_combinations_are_usage_errors() {
             ],
             "--aod 0.9 is outside the valid range [0.05, 0.8] for --model daylight",
         ),
+        (
+            vec![
+                "--format",
+                "glsl",
+                "--model",
+                "preetham",
+                "--constants",
+                "--sun-zenith",
+                "30",
+                "--aod",
+                "0.2",
+            ],
+            "--aod does not apply to --model preetham (only to --model physical, daylight)",
+        ),
+        (
+            vec![
+                "--format",
+                "glsl",
+                "--model",
+                "daylight",
+                "--constants",
+                "--sun-zenith",
+                "97",
+                "--ozone-du",
+                "300",
+            ],
+            "--ozone-du does not apply to --model daylight (only to --model physical)",
+        ),
     ] {
         let mut full = vec!["sky-train", "export", "--out", out];
         full.extend_from_slice(&args);

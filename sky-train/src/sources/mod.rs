@@ -299,19 +299,20 @@ impl SkyParams {
             return refuse(flag, "perez");
         }
         // The daylight sky takes the physical atmosphere's optical depth alone.
-        let aod_only = PhysicalOptions {
+        let daylight = PhysicalOptions {
             aod: None,
             ..self.physical.clone()
         };
-        if kind == ModelKind::Daylight
-            && let Some(flag) = aod_only.first_flag()
-        {
-            return refuse(flag, "physical");
-        }
-        if let Some(flag) = self.physical.first_flag()
-            && !matches!(kind, ModelKind::Physical | ModelKind::Daylight)
-        {
-            return refuse(flag, "physical");
+        let (given, models) = match kind {
+            ModelKind::Physical => (None, ""),
+            ModelKind::Daylight => (daylight.first_flag(), "physical"),
+            _ => match self.physical.first_flag() {
+                Some("--aod") => (Some("--aod"), "physical, daylight"),
+                flag => (flag, "physical"),
+            },
+        };
+        if let Some(flag) = given {
+            return refuse(flag, models);
         }
         Ok(())
     }

@@ -279,9 +279,9 @@ test("browser: a page served from the scratch project draws a SkyMesh", async ()
   }
 });
 
-/** A page's module: `init` (the bundler's way), then a daylight SkyMesh drawn by a level camera
- * (the README's snippet), its pixels above and below the horizon, and the daylight sky on the
- * CPU. */
+/** A page's module: `init` (the bundler's way), then a daylight SkyMesh (the README's snippet)
+ * drawn by a level camera looking north, the sun 30° up behind it, its pixels above and below
+ * the horizon, and the daylight sky on the CPU. */
 const bundledPage = (initLines) => `import * as THREE from "three";
 import { Sky, daylightDefaultAod } from "sky-wasm";
 import { SkyMesh } from "sky-wasm/three";
@@ -293,7 +293,7 @@ const camera = new THREE.PerspectiveCamera(60, 4 / 3, 0.1, 2000);
 camera.lookAt(0, 0, -1);
 const sky = new SkyMesh({ model: "daylight" });
 sky.scale.setScalar(1000);
-sky.material.uniforms.sunPosition.value.set(0.3, 0.5, -0.8);
+sky.material.uniforms.sunPosition.value.set(0.3, 0.5, 0.8);
 scene.add(sky);
 renderer.render(scene, camera);
 const gl = renderer.getContext();
