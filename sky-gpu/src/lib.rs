@@ -6,8 +6,11 @@
 //! Everything that depends only on the sun and the atmosphere is computed once by sky-core's
 //! constructors (Preetham's Perez coefficients, the neural network with √t, θ_sun, eq. 10's
 //! rotation and the input scaling folded into its first layer, AOAS's ray constants, SH
-//! coefficients) and passed as an array of `vec4`s named `sky_<model>`; the shader text holds
-//! only the per-direction part, so one compiled program draws every sky of its model.
+//! coefficients, the daylight sky's one or two networks folded likewise with their blend
+//! weights and the diffuse illuminance of its tables) and passed as an array of `vec4`s named
+//! `sky_<model>`; the shader text holds only the per-direction part, so one compiled program
+//! draws every sky of its model (the daylight sky's: every sun from the zenith to 18° below the
+//! horizon and every aerosol optical depth).
 //!
 //! ```
 //! use sky_gpu::{Language, Model, Storage};
@@ -23,7 +26,7 @@
 //! ```
 //!
 //! **Axes and units** are sky-core's: directions in its frame (+z up, any length); linear
-//! sRGB in cd/m² for the Preetham, neural (shipped weights) and SH skies, O'Neil's relative
+//! sRGB in cd/m² for the Preetham, neural (shipped weights), SH and daylight skies, O'Neil's relative
 //! units for AOAS. **Accuracy**: the same operations as sky-core in the same order, with the
 //! GPU's exp2, atan2, sqrt and inverseSqrt for sky-core's polynomial kernels; the browser tests
 //! hold each shader to sky-core's CPU values within 1e-3 relative (sky-wasm, `scripts/wasm.sh
@@ -51,11 +54,20 @@ pub enum Model {
     Aoas,
     /// The spherical-harmonics sky (seed 001), up to seven bands.
     Sh,
+    /// sky-core's physical daylight sky (`DaylightSky`: day, dusk and night networks, the sun
+    /// from the zenith to 18° below the horizon).
+    Daylight,
 }
 
 impl Model {
     /// Every model.
-    pub const ALL: [Self; 4] = [Self::Preetham, Self::Neural, Self::Aoas, Self::Sh];
+    pub const ALL: [Self; 5] = [
+        Self::Preetham,
+        Self::Neural,
+        Self::Aoas,
+        Self::Sh,
+        Self::Daylight,
+    ];
 
     /// The model's name, as the command line spells it.
     #[must_use]
@@ -65,6 +77,7 @@ impl Model {
             Self::Neural => "neural",
             Self::Aoas => "aoas",
             Self::Sh => "sh",
+            Self::Daylight => "daylight",
         }
     }
 
@@ -76,6 +89,7 @@ impl Model {
             Self::Neural => "sky_neural",
             Self::Aoas => "sky_aoas",
             Self::Sh => "sky_sh",
+            Self::Daylight => "sky_daylight",
         }
     }
 
@@ -87,6 +101,7 @@ impl Model {
             Self::Neural => models::neural::shader(12),
             Self::Aoas => models::aoas::shader(),
             Self::Sh => models::sh::shader(),
+            Self::Daylight => models::daylight::shader(),
         }
     }
 }

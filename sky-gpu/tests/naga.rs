@@ -6,10 +6,11 @@
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 use sky_core::aoas::{AoasSky, Preset, Scattering};
+use sky_core::daylight::Daylight;
 use sky_core::neural::pretrained;
 use sky_core::sh::ShSky;
 use sky_core::{NeuralSky, PreethamSky, Sun};
-use sky_gpu::models::{aoas, neural, preetham, sh};
+use sky_gpu::models::{aoas, daylight, neural, preetham, sh};
 use sky_gpu::{Language, Model, Shader, Storage};
 
 fn validate(module: &naga::Module, what: &str) {
@@ -51,6 +52,8 @@ fn skies() -> Vec<(Shader, Vec<f32>)> {
     let neural = NeuralSky::new(&pretrained::HOSEK, sun, 4.0).expect("valid sky");
     let aoas = AoasSky::new(&Scattering::default(), &Preset::Coral.style()).expect("valid sky");
     let sh = ShSky::new(sun, 3.0, 5).expect("valid sky");
+    // The sun 7° below the horizon: inside the dusk-to-night blend, two networks.
+    let dusk = Daylight::clear(Sun::new(97f32.to_radians(), 2.0).expect("valid sun")).sky();
     vec![
         (
             Model::Preetham.shader(),
@@ -62,6 +65,7 @@ fn skies() -> Vec<(Shader, Vec<f32>)> {
             aoas::params(&aoas).expect("no pattern").to_vec(),
         ),
         (Model::Sh.shader(), sh::params(&sh).to_vec()),
+        (Model::Daylight.shader(), daylight::params(&dusk)),
     ]
 }
 

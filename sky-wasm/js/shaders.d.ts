@@ -18,3 +18,5 @@ export const neural: SkyShader;
 export const aoas: SkyShader;
 /** The spherical-harmonics sky (up to 7 bands): linear sRGB on the model's scale (cd/m² for Preetham). */
 export const sh: SkyShader;
+/** sky-core's physical daylight sky (day, dusk and night networks; the sun down to 18° below the horizon): linear sRGB in cd/m². */
+export const daylight: SkyShader;

@@ -3,7 +3,7 @@ import { LightProbe, Mesh, PMREMGenerator, ShaderMaterial, Vector3, WebGLRendere
 import { Sky } from "./sky_wasm.js";
 
 /** The shader models, as sky-wasm's `Sky.model` names them. */
-export const MODELS: readonly ["preetham", "neural", "aoas", "sh"];
+export const MODELS: readonly ["preetham", "neural", "aoas", "sh", "daylight"];
 export type SkyModel = (typeof MODELS)[number];
 
 /** sky-core's frame (x east, y north, z up) of a three.js world direction (y up, -z north). */
@@ -18,6 +18,8 @@ export function exposureOfEv100(ev100: number): number;
 export interface SkyMeshOptions {
   model?: SkyModel;
   turbidity?: number;
+  /** The daylight sky's aerosol optical depth at 550 nm (`material.uniforms.aod`). */
+  aod?: number;
   weights?: "preetham" | "hosek" | Uint8Array;
   preset?: string;
   bands?: number;

@@ -3,15 +3,18 @@
 //
 // - `SkyMesh`: a Mesh subclass with the interface of three's `Sky` (a BackSide unit box drawn on
 //   the far plane, `material.uniforms.sunPosition` and `.turbidity`, linear HDR output through
-//   three's tone-mapping and colour-space chunks), plus the model and its parameters.
+//   three's tone-mapping and colour-space chunks), plus the model and its parameters; the
+//   daylight sky (`model: "daylight"`) takes the sun down to 18° below the horizon and
+//   `material.uniforms.aod`, the aerosol optical depth.
 // - `skyEnvironment`: the sky prefiltered by PMREMGenerator, an environment map for PBR.
 // - `skyLightProbe`: a LightProbe from the spherical-harmonics sky (3 bands ->
 //   SphericalHarmonics3, converted to three's frame).
 //
 // Axes: three's world is y up; the sky is placed with x east, y up, z south (so -z is north),
 // sky-core's frame being x east, y north, z up. Units: the shaders give cd/m² (Preetham, neural,
-// SH) or O'Neil's relative units (AOAS); `luminanceScale` (set by `ev100` or automatic exposure)
-// turns them into the numbers three's tone mapping expects (docs/gpu.md).
+// SH, daylight) or O'Neil's relative units (AOAS); `luminanceScale` (set by `ev100` or automatic
+// exposure, which holds from the daylight sky's night to its noon) turns them into the numbers
+// three's tone mapping expects (docs/gpu.md).
 //
 // Call sky-wasm's `init()` (or `initSync`) before building a SkyMesh.
 
@@ -26,11 +29,11 @@ import {
   SphericalHarmonics3,
   Vector3,
 } from "three";
-import { Sky } from "./sky_wasm.js";
+import { Sky, daylightDefaultAod } from "./sky_wasm.js";
 import * as shaders from "./shaders.js";
 
 /** The shader models, as sky-wasm's `Sky.model` names them. */
-export const MODELS = ["preetham", "neural", "aoas", "sh"];
+export const MODELS = ["preetham", "neural", "aoas", "sh", "daylight"];
 
 /** The error for a model SkyMesh cannot draw, the same from the constructor and from `update`. */
 function checkModel(model) {
@@ -80,7 +83,9 @@ void main() {
   vec3 w = normalize(vWorldPosition - cameraPosition);
   // three's world (x east, y up, z south) -> sky-core's frame (x east, y north, z up).
   vec3 radiance = sky_radiance(vec3(w.x, -w.z, w.y));
-  gl_FragColor = vec4(radiance * luminanceScale, 1.0);
+  // A channel outside the sRGB gamut (the daylight sky's deep-twilight blue) is clipped at 0,
+  // as sky-wasm's 8-bit images clip it.
+  gl_FragColor = vec4(max(radiance, 0.0) * luminanceScale, 1.0);
   #include <tonemapping_fragment>
   #include <colorspace_fragment>
 }
@@ -104,13 +109,22 @@ void main() {
  * the CPU when one has changed (microseconds) and its shader parameters go to the uniform
  * `sky_<model>`. A parameter sky-core rejects (a sun below the horizon for Preetham, a
  * turbidity out of range) leaves the last valid sky in place and its message in `error`.
+ *
+ * The daylight sky (`new SkyMesh({ model: "daylight" })`) is sky-core's physical clear sky
+ * from noon to astronomical night: the sun anywhere (below 18° under the horizon it draws the
+ * −18° sky) and `material.uniforms.aod.value`, the aerosol optical depth at 550 nm (sky-wasm's
+ * `daylightMinAod()` to `daylightMaxAod()`); a new sun or optical depth is a new uniform array,
+ * never a new shader.
  */
 export class SkyMesh extends Mesh {
   /**
    * @param {object} [options]
-   * @param {"preetham"|"neural"|"aoas"|"sh"} [options.model] the sky model (default preetham)
+   * @param {"preetham"|"neural"|"aoas"|"sh"|"daylight"} [options.model] the sky model (default
+   *   preetham)
    * @param {number} [options.turbidity] turbidity (Preetham 2-6, SH 2.5-6, neural: the trained
-   *   range; not used by AOAS), default 3
+   *   range; not used by AOAS and daylight), default 3
+   * @param {number} [options.aod] the daylight sky's aerosol optical depth at 550 nm (default
+   *   sky-wasm's `daylightDefaultAod()`)
    * @param {"preetham"|"hosek"|Uint8Array} [options.weights] the neural sky's weights: a shipped
    *   set or a weight file's bytes (default "preetham")
    * @param {string} [options.preset] the AOAS style preset without patterns (default "physical")
@@ -118,11 +132,12 @@ export class SkyMesh extends Mesh {
    * @param {number|null} [options.ev100] camera exposure; null (default) for automatic exposure
    *   (the sky's mean luminance to middle grey)
    */
-  constructor({ model = "preetham", turbidity = 3, weights = "preetham", preset = "physical", bands = 3, ev100 = null } = {}) {
+  constructor({ model = "preetham", turbidity = 3, aod = daylightDefaultAod(), weights = "preetham", preset = "physical", bands = 3, ev100 = null } = {}) {
     checkModel(model);
     const uniforms = {
       sunPosition: { value: new Vector3(0, 1, 0) },
       turbidity: { value: turbidity },
+      aod: { value: aod },
       luminanceScale: { value: 1 },
     };
     for (const m of MODELS) uniforms[`sky_${m}`] = { value: new Float32Array(4 * shaders[m].params) };
@@ -171,6 +186,8 @@ export class SkyMesh extends Mesh {
         return Sky.aoasWithSun(this.preset, zenith, azimuth);
       case "sh":
         return Sky.sh(zenith, azimuth, t, this.bands);
+      case "daylight":
+        return Sky.daylight(zenith, azimuth, u.aod.value);
     }
   }
 
@@ -179,7 +196,7 @@ export class SkyMesh extends Mesh {
   update() {
     const u = this.material.uniforms;
     const s = u.sunPosition.value;
-    const key = [this.model, s.x, s.y, s.z, u.turbidity.value, this.weights, this.preset, this.bands, this.ev100].join();
+    const key = [this.model, s.x, s.y, s.z, u.turbidity.value, u.aod.value, this.weights, this.preset, this.bands, this.ev100].join();
     if (key === this._key) return;
     const sky = this.buildSky();
     try {

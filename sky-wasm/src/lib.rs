@@ -274,11 +274,13 @@ impl Sky {
 
     /// The parameters of this sky's GPU shader (sky-gpu; the texts are the package's
     /// `shaders.js`, per [`model`](Self::model)): the uniform array `sky_<model>` as 4 floats
-    /// per `vec4`. For an SH sky, the RGB coefficient c_lm is at `4 (l² + l + m)`.
+    /// per `vec4`. For an SH sky, the RGB coefficient c_lm is at `4 (l² + l + m)`; for a
+    /// daylight sky, its one or two networks folded for the sun and the aerosol optical depth,
+    /// their blend weights and the diffuse illuminance of sky-core's tables (so a new sun or
+    /// optical depth is new parameters, never a new shader).
     ///
     /// # Errors
-    /// An AOAS style with cloud noise, cloud shapes or ambiguity (the shader has none), or a
-    /// daylight sky (no shader).
+    /// An AOAS style with cloud noise, cloud shapes or ambiguity (the shader has none).
     #[wasm_bindgen(js_name = shaderParams)]
     pub fn shader_params(&self) -> Result<Vec<f32>, JsError> {
         use sky_gpu::models;
@@ -287,11 +289,7 @@ impl Sky {
             Model::Neural(s) => models::neural::params(s),
             Model::Aoas(s) => models::aoas::params(s).map_err(display_error)?.to_vec(),
             Model::Sh(s) => models::sh::params(s).to_vec(),
-            Model::Daylight(_) => {
-                return Err(JsError::new(
-                    "the daylight sky has no GPU shader (its networks run on the CPU only)",
-                ));
-            }
+            Model::Daylight(s) => models::daylight::params(s),
         })
     }
 

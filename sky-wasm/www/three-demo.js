@@ -1,6 +1,7 @@
-// The three.js demo: SkyMesh for the background, the sky as an environment map (PMREM) or a
-// light probe (SH) for the objects, the sun from sky-core's SPA for a time of day. Every input
-// redraws once (the scene is static between inputs).
+// The three.js demo: SkyMesh for the background (the physical daylight sky by default, from noon
+// to the night), the sky as an environment map (PMREM) or a light probe (SH) for the objects,
+// the sun from sky-core's SPA for a time of day. Every input redraws once (the scene is static
+// between inputs).
 import * as THREE from "three";
 import init, { SunPosition } from "./pkg/sky_wasm.js";
 import { SkyMesh, fromSkyFrame, skyEnvironment, skyLightProbe } from "./pkg/three.js";
@@ -21,7 +22,7 @@ const camera = new THREE.PerspectiveCamera(50, canvas.width / canvas.height, 0.1
 camera.position.set(0, 1.6, 7);
 camera.lookAt(0, 0.9, 0); // towards -z, north
 
-const sky = new SkyMesh();
+const sky = new SkyMesh({ model: "daylight" });
 sky.scale.setScalar(1000);
 scene.add(sky);
 
@@ -52,8 +53,10 @@ let sunDirection = new THREE.Vector3(0, 1, 0);
 let frame = 0;
 
 function sunAt(minutesLocal) {
+  // Local times before 02:00 are on 20 June in UTC.
   const utc = minutesLocal - UTC_OFFSET_MIN;
-  const p = SunPosition.at(2026, 6, 21, Math.floor(utc / 60), utc % 60, 0, PLACE.latitude, PLACE.longitude, PLACE.elevation);
+  const [day, minutes] = utc < 0 ? [20, utc + 1440] : [21, utc];
+  const p = SunPosition.at(2026, 6, day, Math.floor(minutes / 60), minutes % 60, 0, PLACE.latitude, PLACE.longitude, PLACE.elevation);
   return { zenith: p.zenith, azimuth: p.azimuth, elevation: p.elevationDeg, compass: p.compassAzimuthDeg };
 }
 
@@ -62,18 +65,24 @@ function draw() {
   $("time-value").textContent = `${String(Math.floor(minutes / 60)).padStart(2, "0")}:${String(minutes % 60).padStart(2, "0")}`;
   const turbidity = Number($("turbidity").value);
   $("turbidity-value").textContent = turbidity.toFixed(1);
+  const aod = Number($("aod").value);
+  $("aod-value").textContent = aod.toFixed(2);
   const model = $("model").value;
+  const light = $("light").value;
   try {
     const sun = sunAt(minutes);
     $("sun-readout").textContent = `sun ${sun.elevation.toFixed(1)}° high, compass azimuth ${sun.compass.toFixed(1)}°`;
     document.body.dataset.sunElevationDeg = sun.elevation.toFixed(3);
-    if (sun.zenith > Math.PI / 2) throw new Error("the sun is below the horizon: pick a time between sunrise and sunset");
+    const below = sun.zenith > Math.PI / 2;
+    if (below && model !== "daylight") throw new Error("the sun is below the horizon: pick a time between sunrise and sunset, or the daylight sky");
+    if (below && light === "probe") throw new Error("the light probe is the Preetham sky's SH, which needs the sun above the horizon: use the environment map");
     const s = Math.sin(sun.zenith);
     sunDirection = fromSkyFrame(s * Math.cos(sun.azimuth), s * Math.sin(sun.azimuth), Math.cos(sun.zenith));
     sky.model = model.startsWith("neural") ? "neural" : model;
     sky.weights = WEIGHTS[model] ?? "preetham";
     sky.material.uniforms.sunPosition.value.copy(sunDirection);
     sky.material.uniforms.turbidity.value = turbidity;
+    sky.material.uniforms.aod.value = aod;
     sky.update();
     const scale = sky.material.uniforms.luminanceScale.value;
     $("exposure-readout").textContent = `${scale.toExponential(3)} per cd/m²`;
@@ -81,7 +90,7 @@ function draw() {
     environment = null;
     if (probe) scene.remove(probe);
     probe = null;
-    if ($("light").value === "environment") {
+    if (light === "environment") {
       environment = skyEnvironment(renderer, sky, pmrem);
       scene.environment = environment.texture;
     } else {
@@ -115,6 +124,6 @@ function sunSidePixel() {
 /** For the tests: what the scene holds and where things are drawn. */
 window.skyDemo = { renderer, scene, camera, sky, objects, pixelOf, sunSidePixel, draw };
 
-for (const id of ["time", "model", "light", "turbidity"]) $(id).addEventListener("input", draw);
+for (const id of ["time", "model", "light", "turbidity", "aod"]) $(id).addEventListener("input", draw);
 draw();
 document.body.dataset.ready = "true";

@@ -7,6 +7,7 @@ use common::run;
 
 use std::path::Path;
 
+use sky_core::daylight::Daylight;
 use sky_core::neural::pretrained;
 use sky_core::{NeuralSky, PreethamSky, Sun};
 use sky_gpu::{Language, Model, Storage};
@@ -102,6 +103,34 @@ fn constants_are_the_named_skys_parameters() {
     assert_eq!(written, want);
     // The folded constant of neuron 0 appears as the literal sky-core computed.
     assert!(written.contains(&format!("{:?}", params[4 * 15 + 3])));
+
+    // The daylight sky, the sun 7 deg below the horizon (two networks share it), an optical
+    // depth of 0.2.
+    let sun = Sun::new(
+        sky_train::sources::radians(97.0),
+        sky_train::sources::radians(25.0),
+    )
+    .expect("valid sun");
+    let sky = Daylight::new(sun, 0.2).expect("valid sky").sky();
+    let written = export(&[
+        "--format",
+        "glsl",
+        "--model",
+        "daylight",
+        "--constants",
+        "--sun-zenith",
+        "97",
+        "--sun-azimuth",
+        "25",
+        "--aod",
+        "0.2",
+    ]);
+    let params = sky_gpu::models::daylight::params(&sky);
+    assert_eq!(params[3], 2.0, "two networks");
+    let want = Model::Daylight
+        .shader()
+        .source(Language::Glsl, Storage::Constant(&params));
+    assert_eq!(written, want);
 }
 
 #[test]
@@ -142,6 +171,48 @@ fn bad_combinations_are_usage_errors() {
             "--sun-zenith",
         ),
         (vec!["--format", "f32"], "--weights FILE and --name NAME"),
+        (
+            vec![
+                "--format",
+                "wgsl",
+                "--model",
+                "daylight",
+                "--constants",
+                "--sun-zenith",
+                "97",
+                "--aod",
+                "0.9",
+            ],
+            "--aod 0.9 is outside the valid range [0.05, 0.8] for --model daylight",
+        ),
+        (
+            vec![
+                "--format",
+                "glsl",
+                "--model",
+                "preetham",
+                "--constants",
+                "--sun-zenith",
+                "30",
+                "--aod",
+                "0.2",
+            ],
+            "--aod does not apply to --model preetham (only to --model physical, daylight)",
+        ),
+        (
+            vec![
+                "--format",
+                "glsl",
+                "--model",
+                "daylight",
+                "--constants",
+                "--sun-zenith",
+                "97",
+                "--ozone-du",
+                "300",
+            ],
+            "--ozone-du does not apply to --model daylight (only to --model physical)",
+        ),
     ] {
         let mut full = vec!["sky-train", "export", "--out", out];
         full.extend_from_slice(&args);

@@ -179,6 +179,16 @@ impl DaylightSky {
         self.batch::<true>(dirs, out);
     }
 
+    /// The sky's parts, in the order [`xyz`](Self::xyz) sums them: per part a network (its
+    /// output the sky's shape per CIE X, Y, Z; `None` for a uniform shape of 1, which the
+    /// shipped weights never give) and its factor, E_d,c / π times the network's blend weight
+    /// (X, Y, Z, cd/m²). The second part's factor is zero outside the [`BLENDS`]. For GPU
+    /// shaders (sky-gpu) that take these as uniforms and evaluate the networks per direction.
+    #[must_use]
+    pub fn shares(&self) -> [(Option<&NeuralSky<HIDDEN>>, Vec3); 2] {
+        self.shares.each_ref().map(|(n, s)| (n.as_ref(), *s))
+    }
+
     /// Fills `out` with [`Self::xyz_lanes`] (through [`srgb_lanes`] if `SRGB`), [`LANES`]
     /// directions at a time, the last group padded with zero directions (each lane's result
     /// is its own, so the padding changes nothing, and the batch needs no second copy of the

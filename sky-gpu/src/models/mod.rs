@@ -2,6 +2,7 @@
 //! parameters.
 
 pub mod aoas;
+pub mod daylight;
 pub mod neural;
 pub mod preetham;
 pub mod sh;

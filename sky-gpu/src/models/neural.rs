@@ -4,7 +4,7 @@
 
 use sky_core::NeuralSky;
 
-use crate::ir::{Body, Builtin, Function, Ty, call, float, int, select, splat3};
+use crate::ir::{Body, Builtin, Expr, Function, Ty, call, float, int, select, splat3};
 use crate::models::preetham::normalised;
 use crate::{Model, Shader, param};
 
@@ -23,36 +23,7 @@ pub fn shader(hidden: usize) -> Shader {
     let p = |i: i32| param(Model::Neural, i);
     let mut b = Body::new();
     let d = normalised(&mut b);
-    let q = b.let_("q", Ty::Vec3, d.clone() - p(0).swizzle("xyz"));
-    // The inputs of eq. 4 that vary per direction: v and d = |v − s|.
-    let v = b.let_(
-        "v",
-        Ty::Vec4,
-        crate::ir::Expr::Construct(
-            Ty::Vec4,
-            vec![
-                d.clone(),
-                call(Builtin::Sqrt, [call(Builtin::Dot, [q.clone(), q])]),
-            ],
-        ),
-    );
-    b.var("z", Ty::Vec3, p(1).swizzle("xyz"));
-    b.for_("j", int(h), |b, j| {
-        // [3 + H + j]: output weights (R, G, B) and the constant part of h_j.
-        let o = b.let_("o", Ty::Vec4, param_at(int(3 + h) + j.clone()));
-        // Eq. 4 (scaling and rotation folded in), summed in sky-core's order, then eq. 5's
-        // activation into eq. 6's sums.
-        let c = b.let_("c", Ty::Vec4, param_at(int(3) + j));
-        let term = |k: &'static str| c.clone().swizzle(k) * v.clone().swizzle(k);
-        let hj = b.let_(
-            "h",
-            Ty::F32,
-            o.clone().swizzle("w") + term("x") + term("y") + term("z") + term("w"),
-        );
-        let a = b.let_("a", Ty::F32, 1.0 / (1.0 + hj.clone() * hj));
-        b.add_assign("z", o.swizzle("xyz") * a);
-    });
-    let z = crate::ir::name("z");
+    let z = output_sums(&mut b, h, d.clone(), &param_at);
     // Eq. 7 through eq. 6's output activation: ½ scale z² (sky-core's module docs); 0 below
     // the horizon (sky-core's rule).
     b.return_(select(
@@ -83,8 +54,41 @@ pub fn shader(hidden: usize) -> Shader {
     }
 }
 
-fn param_at(i: crate::ir::Expr) -> crate::ir::Expr {
+fn param_at(i: Expr) -> Expr {
     crate::ir::name(Model::Neural.params_name()).at(i)
+}
+
+/// One network's output sums (eq. 6) towards the unit view direction `d`, as statements of
+/// `b` (`let q`, `let v`, `var z` and the loop over the `hidden` neurons), its parameter `i`
+/// (the layout of [`params`]) read as `at(i)`; returns `z`.
+pub(crate) fn output_sums(b: &mut Body, hidden: i32, d: Expr, at: &dyn Fn(Expr) -> Expr) -> Expr {
+    let q = b.let_("q", Ty::Vec3, d.clone() - at(int(0)).swizzle("xyz"));
+    // The inputs of eq. 4 that vary per direction: v and d = |v − s|.
+    let v = b.let_(
+        "v",
+        Ty::Vec4,
+        Expr::Construct(
+            Ty::Vec4,
+            vec![d, call(Builtin::Sqrt, [call(Builtin::Dot, [q.clone(), q])])],
+        ),
+    );
+    b.var("z", Ty::Vec3, at(int(1)).swizzle("xyz"));
+    b.for_("j", int(hidden), |b, j| {
+        // [3 + H + j]: output weights (R, G, B) and the constant part of h_j.
+        let o = b.let_("o", Ty::Vec4, at(int(3 + hidden) + j.clone()));
+        // Eq. 4 (scaling and rotation folded in), summed in sky-core's order, then eq. 5's
+        // activation into eq. 6's sums.
+        let c = b.let_("c", Ty::Vec4, at(int(3) + j));
+        let term = |k: &'static str| c.clone().swizzle(k) * v.clone().swizzle(k);
+        let hj = b.let_(
+            "h",
+            Ty::F32,
+            o.clone().swizzle("w") + term("x") + term("y") + term("z") + term("w"),
+        );
+        let a = b.let_("a", Ty::F32, 1.0 / (1.0 + hj.clone() * hj));
+        b.add_assign("z", o.swizzle("xyz") * a);
+    });
+    crate::ir::name("z")
 }
 
 /// The parameters of `sky` in the layout of [`shader`]`(H)`.

@@ -163,9 +163,10 @@ fn shader_source(args: &ExportArgs, lang: sky_gpu::Language) -> Result<String> {
         }
         ModelKind::Aoas => sky_gpu::Model::Aoas,
         ModelKind::Sh => sky_gpu::Model::Sh,
+        ModelKind::Daylight => sky_gpu::Model::Daylight,
         ModelKind::Hosek | ModelKind::Cie | ModelKind::Perez | ModelKind::Physical => {
             return Err(ParamError(format!(
-                "--model {} has no shader (preetham, neural, neural-preetham, neural-hosek, aoas or sh)",
+                "--model {} has no shader (preetham, neural, neural-preetham, neural-hosek, aoas, sh or daylight)",
                 sky.model
             ))
             .into());

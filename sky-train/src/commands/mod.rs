@@ -123,8 +123,9 @@ pub struct AtmosphereArgs {
     /// clear continental sky (OPAC continental average, AOD 0.151).
     #[arg(long, value_enum, value_name = "PRESET")]
     atmosphere: Option<crate::physical::atmosphere::Preset>,
-    /// Aerosol optical depth at 550 nm, 0 to 5 (physical only; default the preset's; excludes
-    /// --turbidity, which maps Preetham's turbidity to it).
+    /// Aerosol optical depth at 550 nm, 0 to 5 (physical; default the preset's; excludes
+    /// --turbidity, which maps Preetham's turbidity to it); daylight: 0.05 to 0.8 (default
+    /// 0.38, sky-core's tables).
     #[arg(
         long,
         value_name = "TAU",

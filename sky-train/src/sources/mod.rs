@@ -5,6 +5,7 @@
 
 mod aoas;
 mod cie;
+mod daylight;
 mod hosek;
 mod neural;
 mod perez;
@@ -21,6 +22,7 @@ use crate::args::describe;
 pub use crate::args::{ParamError, radians};
 pub use aoas::Aoas;
 pub use cie::Cie;
+pub use daylight::Daylight;
 pub use hosek::Hosek;
 pub use neural::Neural;
 pub use perez::Perez;
@@ -81,6 +83,9 @@ pub enum ModelKind {
     /// ozone, aerosol, the Earth's shadow; sun zenith 0-108 deg; `--aod` or `--turbidity`,
     /// `--ozone-du`, `--albedo`, ...).
     Physical,
+    /// sky-core's clear-sky daylight sky, the physical atmosphere distilled into networks (sun
+    /// zenith 0-180 deg, below -18 deg elevation the -18 deg sky; `--aod`).
+    Daylight,
 }
 
 impl ModelKind {
@@ -96,7 +101,7 @@ impl ModelKind {
             | Self::Sh
             | Self::Cie
             | Self::Perez => (0.0, 90.0),
-            Self::Neural => (0.0, 180.0),
+            Self::Neural | Self::Daylight => (0.0, 180.0),
             Self::Physical => (0.0, crate::physical::sky::MAX_SUN_ZENITH_DEG),
         }
     }
@@ -104,7 +109,7 @@ impl ModelKind {
     /// Whether the model has a turbidity (AOAS's atmosphere is set by its style instead).
     #[must_use]
     pub fn uses_turbidity(self) -> bool {
-        !matches!(self, Self::Aoas | Self::Cie | Self::Perez)
+        !matches!(self, Self::Aoas | Self::Cie | Self::Perez | Self::Daylight)
     }
 
     /// The turbidities the model accepts.
@@ -118,8 +123,8 @@ impl ModelKind {
             Self::Neural => (0.0, f64::INFINITY),
             Self::Physical => crate::physical::atmosphere::TURBIDITY_RANGE,
             // AOAS has no turbidity (its atmosphere is set by its style), nor have the weather
-            // skies (set by their type or measurement).
-            Self::Aoas | Self::Cie | Self::Perez => (0.0, 0.0),
+            // skies (set by their type or measurement) and the daylight sky (`--aod`).
+            Self::Aoas | Self::Cie | Self::Perez | Self::Daylight => (0.0, 0.0),
         }
     }
 }
@@ -137,6 +142,7 @@ impl fmt::Display for ModelKind {
             Self::Cie => "cie",
             Self::Perez => "perez",
             Self::Physical => "physical",
+            Self::Daylight => "daylight",
         })
     }
 }
@@ -245,6 +251,7 @@ pub fn build(kind: ModelKind, params: &SkyParams) -> Result<Box<dyn SkySource>, 
         ModelKind::Cie => Ok(Box::new(Cie::new(params)?)),
         ModelKind::Perez => Ok(Box::new(Perez::new(params)?)),
         ModelKind::Physical => Ok(Box::new(Physical::new(params)?)),
+        ModelKind::Daylight => Ok(Box::new(Daylight::new(params)?)),
     }
 }
 
@@ -291,10 +298,21 @@ impl SkyParams {
         {
             return refuse(flag, "perez");
         }
-        if let Some(flag) = self.physical.first_flag()
-            && kind != ModelKind::Physical
-        {
-            return refuse(flag, "physical");
+        // The daylight sky takes the physical atmosphere's optical depth alone.
+        let daylight = PhysicalOptions {
+            aod: None,
+            ..self.physical.clone()
+        };
+        let (given, models) = match kind {
+            ModelKind::Physical => (None, ""),
+            ModelKind::Daylight => (daylight.first_flag(), "physical"),
+            _ => match self.physical.first_flag() {
+                Some("--aod") => (Some("--aod"), "physical, daylight"),
+                flag => (flag, "physical"),
+            },
+        };
+        if let Some(flag) = given {
+            return refuse(flag, models);
         }
         Ok(())
     }
@@ -347,6 +365,7 @@ fn flag(parameter: &str) -> &str {
         "global irradiance" => "--ghi",
         "diffuse irradiance" => "--dhi",
         "global illuminance" => "--global-lux",
+        "aerosol optical depth" => "--aod",
         other => other,
     }
 }

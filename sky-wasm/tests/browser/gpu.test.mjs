@@ -3,8 +3,14 @@
 // in WebGL2 (ANGLE on SwiftShader) rendered into an RGBA32F target (EXT_color_buffer_float)
 // and read back, and the WGSL text in WebGPU (Dawn on SwiftShader's Vulkan) run as a compute
 // shader. The bound: 1e-3 relative per channel where sky-core's linear radiance is above 1e-3
-// of the image's peak; and exactly 0 where sky-core's is 0 (every direction below the horizon:
-// sky-core's one below-horizon rule, its crate docs' "Conventions").
+// of the image's peak (in magnitude: the daylight sky's twilight blue may have a negative
+// channel); and exactly 0 where sky-core's is 0 (every direction below the horizon: sky-core's
+// one below-horizon rule, its crate docs' "Conventions"). The daylight sky is checked by day, in
+// both blends of its networks, in civil and nautical twilight, at -18° and below it.
+//
+// Then three.js's SkyMesh with the daylight sky, rendered into a float cube map: its automatic
+// exposure holds the exposed mean luminance of the sky at middle grey from the -18° sky to noon,
+// over ten decades of luminance.
 //
 // SKY_WASM_SITE: the built site (scripts/wasm.sh build).
 import { test, before, after } from "node:test";
@@ -20,7 +26,10 @@ const FLOOR = 1e-3;
 let server, browser, page, url, problems;
 
 before(async () => {
-  ({ server, url } = await serve(site, { "/gpu.html": "<!doctype html><title>gpu</title><link rel=\"icon\" href=\"data:,\">" }));
+  ({ server, url } = await serve(site, {
+    "/gpu.html": "<!doctype html><title>gpu</title><link rel=\"icon\" href=\"data:,\">" +
+      "<script type=\"importmap\">{ \"imports\": { \"three\": \"/vendor/three/three.module.js\" } }</script>",
+  }));
   ({ browser, page, problems } = await launch(SWIFTSHADER));
   await page.goto(`${url}gpu.html`);
   await page.evaluate(async () => {
@@ -51,6 +60,16 @@ const SKIES = [
   ["aoas coral, sun 60°", "aoasWithSun", ["coral", 60 * DEG, 1.0]],
   ["sh 3 bands, sun 40°, turbidity 3", "sh", [40 * DEG, 0.3, 3, 3]],
   ["sh 7 bands, sun 75°, turbidity 5", "sh", [75 * DEG, -1.2, 5, 7]],
+  // The daylight sky (sun zenith, azimuth, aerosol optical depth): one network by day, two in
+  // the day-to-dusk blend (sun zenith 86°-90°) and the dusk-to-night blend (96°-98°).
+  ["daylight, noon (sun 20° from the zenith), aod 0.38", "daylight", [20 * DEG, 1.0, 0.38]],
+  ["daylight, sun 60°, aod 0.05", "daylight", [60 * DEG, -2.0, 0.05]],
+  ["daylight, day-to-dusk blend (sun 2° up), aod 0.8", "daylight", [88 * DEG, 2.5, 0.8]],
+  ["daylight, civil twilight (sun 3° down), aod 0.38", "daylight", [93 * DEG, 0.5, 0.38]],
+  ["daylight, dusk-to-night blend (sun 7° down), aod 0.2", "daylight", [97 * DEG, -1.0, 0.2]],
+  ["daylight, nautical twilight (sun 10° down), aod 0.38", "daylight", [100 * DEG, 3.0, 0.38]],
+  ["daylight, astronomical night (sun 18° down), aod 0.38", "daylight", [108 * DEG, -2.5, 0.38]],
+  ["daylight, sun 30° down (the -18° sky), aod 0.6", "daylight", [120 * DEG, 1.5, 0.6]],
 ];
 
 /** Directions in all: 1,536 over the upper hemisphere, 64 near the sun, 192 below the horizon. */
@@ -193,7 +212,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
 /** The worst relative difference per channel above the floor, and how many directions it
  * covered; how many directions sky-core makes black, and at how many of them the GPU is not. */
 function compare({ cpu, gpu }) {
-  const peak = Math.max(...cpu);
+  const peak = Math.max(...cpu.map(Math.abs));
   let worst = 0, at = -1, counted = 0, nonFinite = 0, black = 0, notBlack = 0;
   for (let i = 0; i < N; i++) {
     if ([0, 1, 2].every((c) => cpu[3 * i + c] === 0)) {
@@ -204,9 +223,9 @@ function compare({ cpu, gpu }) {
     for (let c = 0; c < 3; c++) {
       const want = cpu[3 * i + c], got = gpu[4 * i + c];
       if (!Number.isFinite(got)) nonFinite++;
-      if (want > FLOOR * peak) {
+      if (Math.abs(want) > FLOOR * peak) {
         any = true;
-        const e = Math.abs(got - want) / want;
+        const e = Math.abs(got - want) / Math.abs(want);
         if (e > worst) [worst, at] = [e, i];
       }
     }
@@ -229,3 +248,92 @@ for (const api of ["webgl2", "webgpu"]) {
     assert.deepEqual(problems, []);
   });
 }
+
+/** The exposure test's suns: every 3° of elevation from -18° to 90°, and 30° below the horizon
+ * (where the daylight sky is the -18° one); its atmospheres: sky-core's tables' clearest,
+ * default and haziest. */
+const EXPOSURE_ELEVATIONS = [...Array.from({ length: 37 }, (_, k) => -18 + 3 * k), -30];
+const EXPOSURE_AODS = [0.05, 0.38, 0.8];
+/** Automatic exposure's target: the sky's mean luminance to middle grey (sky-wasm's
+ * `autoExposure`). */
+const MIDDLE_GREY = 0.18;
+/** How far the exposed mean may stray from middle grey: `autoExposure` averages 812 directions
+ * of an equal-area fisheye, the test a 6 × 32 × 32 cube map (two quadratures of one integral;
+ * the sun's aureole near noon is where they differ most). */
+const EXPOSURE_BAND = [0.9, 1.1];
+
+test("webgl2: SkyMesh's automatic exposure holds the daylight sky at middle grey from -18° to noon", async () => {
+  const rows = await page.evaluate(async ({ elevations, aods }) => {
+    const THREE = await import("three");
+    const { SkyMesh, fromSkyFrame } = await import("/pkg/three.js");
+    const renderer = new THREE.WebGLRenderer({ canvas: document.createElement("canvas") });
+    renderer.toneMapping = THREE.NoToneMapping;
+    const size = 32;
+    const target = new THREE.WebGLCubeRenderTarget(size, { type: THREE.FloatType });
+    const camera = new THREE.CubeCamera(0.1, 10, target);
+    const scene = new THREE.Scene();
+    const sky = new SkyMesh({ model: "daylight" });
+    scene.add(sky);
+    // Each texel's solid angle (exact, from the face's projection), the same on every face.
+    const A = (x, y) => Math.atan2(x * y, Math.sqrt(x * x + y * y + 1));
+    const omega = new Float64Array(size * size);
+    for (let j = 0; j < size; j++) for (let i = 0; i < size; i++) {
+      const [u0, u1, v0, v1] = [i, i + 1, j, j + 1].map((t) => (2 * t) / size - 1);
+      omega[j * size + i] = A(u1, v1) - A(u0, v1) - A(u1, v0) + A(u0, v0);
+    }
+    const pixels = new Float32Array(size * size * 4);
+    const out = [];
+    for (const aod of aods) for (const elevation of elevations) {
+      const h = (elevation * Math.PI) / 180;
+      sky.material.uniforms.sunPosition.value.copy(fromSkyFrame(Math.cos(h) * Math.cos(0.4), Math.cos(h) * Math.sin(0.4), Math.sin(h)));
+      sky.material.uniforms.aod.value = aod;
+      sky.update();
+      const scale = sky.material.uniforms.luminanceScale.value;
+      camera.update(renderer, scene);
+      let sum = 0, lo = Infinity, hi = 0, nonFinite = 0;
+      for (let face = 0; face < 6; face++) {
+        renderer.readRenderTargetPixels(target, 0, 0, size, size, pixels, face);
+        for (let k = 0; k < size * size; k++) {
+          // sky-core's luminance of linear sRGB (the middle row of its sRGB -> XYZ matrix).
+          const y = 0.2126 * pixels[4 * k] + 0.7152 * pixels[4 * k + 1] + 0.0722 * pixels[4 * k + 2];
+          if (!Number.isFinite(y)) nonFinite++;
+          sum += y * omega[k];
+          if (y > 0) [lo, hi] = [Math.min(lo, y / scale), Math.max(hi, y / scale)];
+        }
+      }
+      // The sky is 0 below the horizon: the whole sphere's integral over 2π sr is the upper
+      // hemisphere's mean.
+      out.push({ aod, elevation, scale, mean: sum / (2 * Math.PI), lo, hi, nonFinite, error: sky.error });
+    }
+    target.dispose();
+    renderer.dispose();
+    return out;
+  }, { elevations: EXPOSURE_ELEVATIONS, aods: EXPOSURE_AODS });
+  let [worstLow, worstHigh, darkest, brightest] = [Infinity, 0, Infinity, 0];
+  for (const aod of EXPOSURE_AODS) {
+    const of = rows.filter((r) => r.aod === aod);
+    const at = (e) => of.find((r) => r.elevation === e);
+    const ratios = of.map((r) => r.mean / MIDDLE_GREY);
+    console.log(`  aod ${aod}: exposure ${at(90).scale.toExponential(3)} per cd/m² at noon, ${at(-18).scale.toExponential(3)} at -18° ` +
+      `(${Math.log10(at(-18).scale / at(90).scale).toFixed(2)} decades); exposed mean / middle grey ${Math.min(...ratios).toFixed(4)} to ${Math.max(...ratios).toFixed(4)}`);
+  }
+  for (const r of rows) {
+    assert.equal(r.error, null, `aod ${r.aod}, sun ${r.elevation}°: ${r.error}`);
+    assert.equal(r.nonFinite, 0, `aod ${r.aod}, sun ${r.elevation}°: non-finite pixels`);
+    const ratio = r.mean / MIDDLE_GREY;
+    [worstLow, worstHigh] = [Math.min(worstLow, ratio), Math.max(worstHigh, ratio)];
+    [darkest, brightest] = [Math.min(darkest, r.lo), Math.max(brightest, r.hi)];
+    assert.ok(ratio >= EXPOSURE_BAND[0] && ratio <= EXPOSURE_BAND[1],
+      `aod ${r.aod}, sun ${r.elevation}°: exposed mean ${r.mean} is ${ratio} of middle grey`);
+  }
+  const decades = Math.log10(brightest / darkest);
+  console.log(`  sky luminance from ${darkest.toExponential(3)} cd/m² (the darkest direction, -18°) to ${brightest.toExponential(3)} (the brightest, noon): ` +
+    `${decades.toFixed(2)} decades; exposed mean / middle grey ${worstLow.toFixed(4)} to ${worstHigh.toFixed(4)} over ${rows.length} skies`);
+  assert.ok(decades >= 10, `the skies span ${decades} decades of luminance`);
+  // -30° draws the -18° sky: the same exposure.
+  for (const aod of EXPOSURE_AODS) {
+    const [a, b] = [-18, -30].map((e) => rows.find((r) => r.aod === aod && r.elevation === e).scale);
+    assert.ok(Math.abs(a - b) <= 1e-3 * a, `aod ${aod}: ${a} at -18°, ${b} at -30°`);
+  }
+  assert.deepEqual(problems, []);
+});

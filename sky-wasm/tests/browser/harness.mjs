@@ -22,7 +22,8 @@ export const SWIFTSHADER = [...BASE_ARGS, "--use-angle=swiftshader", "--enable-u
   "--use-webgpu-adapter=swiftshader"];
 
 /** Serves the folder `root` on 127.0.0.1 (a free port); `pages` maps paths to inline HTML. */
-export async function serve(root, pages = {}) {
+export async function serve(folder, pages = {}) {
+  const root = path.resolve(folder);
   const server = createServer(async (req, res) => {
     const rel = decodeURIComponent(new URL(req.url, "http://localhost").pathname);
     if (pages[rel]) return res.writeHead(200, { "content-type": "text/html" }).end(pages[rel]);

@@ -1,7 +1,8 @@
 // The three.js demo (www/three.html) in Debian's Chromium, WebGL2 on SwiftShader: it renders
 // without a console error, the sky follows the time slider, the lit objects take the sky's
 // colour (white-blue at noon, warm at sunset) read from the canvas, every model and both lights
-// draw, and the light probe's irradiance (three's SphericalHarmonics3) is sky-core's.
+// draw, the physical daylight sky (the default) draws the blue hour and the night, and the light
+// probe's irradiance (three's SphericalHarmonics3) is sky-core's.
 //
 // SKY_WASM_SITE: the built site; SKY_WASM_ARTIFACTS: where the screenshot goes.
 import { test, before, after } from "node:test";
@@ -69,8 +70,10 @@ const sunSide = () => page.evaluate(() => window.skyDemo.sunSidePixel());
 const skyPixel = [450, 30]; // high in the northern sky
 const show = (c) => c.map((v) => v.toFixed(0)).join(", ");
 
-test("the page renders without a console error", async () => {
+test("the page renders without a console error, the daylight sky by default", async () => {
   assert.deepEqual(problems, []);
+  assert.equal(await page.inputValue("#model"), "daylight", "the page opens on the daylight sky");
+  assert.equal(await page.evaluate(() => window.skyDemo.sky.model), "daylight");
   const px = await canvasPixels();
   const colours = new Set();
   for (let k = 0; k < px.length; k += 4) colours.add((px[k] << 16) | (px[k + 1] << 8) | px[k + 2]);
@@ -103,7 +106,7 @@ for (const light of ["environment", "probe"]) {
 test("every model draws the sky and lights the scene", async () => {
   await set({ model: "preetham", light: "probe", time: 10 * 60 });
   let before = await canvasPixels();
-  for (const model of ["neural-preetham", "neural-hosek", "aoas", "sh", "preetham"]) {
+  for (const model of ["neural-preetham", "neural-hosek", "aoas", "sh", "daylight", "preetham"]) {
     await set({ model });
     const now = await canvasPixels();
     const differing = now.filter((v, k) => v !== before[k]).length;
@@ -145,8 +148,32 @@ test("the light probe's irradiance is sky-core's SH irradiance (1e-5 of the larg
   assert.ok(r.worst <= 1e-5, `light probe irradiance off by ${r.worst}`);
 });
 
-test("screenshot kept as an artifact", async () => {
-  await set({ model: "preetham", light: "environment", turbidity: 3, time: 20 * 60 + 20 });
+test("the daylight sky draws the blue hour and the night, lit by its environment map", async () => {
+  const elevation = () => page.evaluate(() => Number(document.body.dataset.sunElevationDeg));
+  // 21:55, the sun about 7° below the horizon; 01:05, the night's deepest sun, about 18.4° down.
+  for (const [time, label] of [[21 * 60 + 55, "blue hour"], [60 + 5, "night"]]) {
+    await set({ model: "daylight", light: "environment", aod: 0.38, time });
+    const sun = await elevation();
+    const sky = await rgbAt(skyPixel);
+    const sphere = await rgbAt(await sunSide());
+    console.log(`  daylight, ${label} (sun ${sun.toFixed(2)}°): sky (${show(sky)}), white sphere (${show(sphere)})`);
+    assert.ok(sun < -4, `${label}: the sun ${sun}° is below the horizon`);
+    assert.ok(sky[2] > sky[0] && sky[2] > 60, `${label}: a blue sky under automatic exposure: ${sky}`);
+    assert.ok(sphere[2] >= sphere[0] && Math.max(...sphere) > 30, `${label}: the sphere lit by the blue sky: ${sphere}`);
+  }
+  assert.ok(await elevation() < -18, "the night's sun is below -18°");
+  // The probe is the Preetham sky's SH, which has no night: a clear message, no exception.
+  await page.evaluate(() => {
+    const el = document.getElementById("light");
+    el.value = "probe";
+    el.dispatchEvent(new Event("input", { bubbles: true }));
+  });
+  assert.match(await page.textContent("#error"), /light probe .* needs the sun above the horizon/);
+  assert.deepEqual(problems, []);
+});
+
+test("screenshot kept as an artifact: the blue hour in the daylight sky", async () => {
+  await set({ model: "daylight", light: "environment", aod: 0.38, turbidity: 3, time: 21 * 60 + 55 });
   await mkdir(artifacts, { recursive: true });
   const file = path.join(artifacts, "three.png");
   await page.screenshot({ path: file, fullPage: true, timeout: 120_000 });

@@ -69,7 +69,6 @@ test("errors are thrown as JavaScript Errors carrying the message", () => {
     e.message === "aerosol optical depth = 0.9 is outside the valid range [0.05, 0.8]");
   assert.throws(() => Sky.daylight(3.5, 0, 0.43), (e) => e instanceof Error &&
     e.message === "sun zenith [rad] = 3.5 is outside the valid range [0, 3.1415927]");
-  assert.throws(() => Sky.daylight(1.7, 0, 0.43).shaderParams(), /no GPU shader/);
   const r = Renderer.fisheye(8, 4);
   assert.throws(() => r.renderLinear(Sky.preetham(0.5, 0, 3), new Float32Array(5)), (e) =>
     e instanceof Error && e.message === "out has length 5, but a 8x4 image needs 96 (3 per pixel)");
@@ -133,6 +132,13 @@ test("rgbBatch gives rgb's values; shaderParams and irradiance reach JavaScript"
   const sh = Sky.sh(0.9, 2.0, 3, 3);
   assert.ok(sh.irradiance(0, 0)[1] > 1000, "lux-scale irradiance from above");
   assert.equal(Sky.shUnfiltered(0.9, 2.0, 3, 3).shaderParams().length, 4 * 49);
+  // The daylight sky's: two networks of 51 vec4s and the two parts' factors; [0].w is how many
+  // networks share the sky (two inside a blend).
+  for (const [zenith, parts] of [[0.7, 1], [1.7, 2], [2.0, 1]]) {
+    const p = Sky.daylight(zenith, 0.3, 0.2).shaderParams();
+    assert.equal(p.length, 4 * 104);
+    assert.equal(p[3], parts, `sun zenith ${zenith}`);
+  }
 });
 
 test("DaylightDay: one call per day, typed arrays, native sky-core's daylight to 1e-6", () => {
