@@ -21,8 +21,9 @@
 #          chromium, and the npm tarball installed into a scratch project (scripts/wasm.sh test)
 #
 # Two lanes run side by side on the machine's cores: the host lane (clippy, doc, the workspace
-# tests, micromath, publish) in target/debug, and the other lane (cross, wasm, fuzz, doc blocks)
-# in target/cross, target/wasm, fuzz/target and target/release. They share no build directory,
+# tests, micromath, publish, doc blocks) in target/debug and target/release, and the other lane
+# (setup, cross, wasm, fuzz; the host lane needs nothing setup installs, so it starts at once)
+# in target/cross, target/wasm and fuzz/target. They share no build directory,
 # so neither waits for the other's cargo lock, and each fills the other's single-threaded
 # stretches (link-time optimisation, qemu, fuzzing, the browser). The other lane's output is
 # printed when it ends; the first failure in either lane stops both. Each step's time is
@@ -99,15 +100,15 @@ fmt() {
 
 # The lane beside the host's: each of its steps has its own build directory.
 other_lane() {
+  step other "setup: what the cross, wasm and fuzz steps need (apt packages, qemu, the cargo-installed tools, npm packages)" \
+    scripts/setup.sh
   step other "cross targets and firmware under qemu" scripts/cross.sh
   step other "sky-wasm: wasm build, wasm-bindgen tests and node tests, browser tests of the demo" \
     scripts/wasm.sh test
   step other "coverage-guided fuzzing (libFuzzer): every decoder of outside input, 25 s each" \
     scripts/fuzz.sh 25
-  step other "the sh and toml blocks of README.md and docs/ run as written" scripts/doc-blocks.sh
 }
 
-step host "setup" scripts/setup.sh
 step host "cargo fmt --check (the workspace, and the firmware outside it)" fmt
 
 if [ "$mode" = quick ]; then
@@ -145,13 +146,14 @@ step host "sky-core's micromath feature: each model's error against its f64 refe
 step host "sky-core's examples run" examples
 step host "cargo publish --dry-run: sky-core, sky-gpu and sky-train package and build from their packaged sources" \
   cargo publish --workspace --dry-run --locked --allow-dirty "${dev_profile[@]}"
+step host "the sh and toml blocks of README.md and docs/ run as written" scripts/doc-blocks.sh
 
-printf '\n==> the host lane passed at %d s; waiting for the other lane (cross, wasm, fuzz, doc blocks)\n' \
+printf '\n==> the host lane passed at %d s; waiting for the other lane (setup, cross, wasm, fuzz)\n' \
   "$(($(date +%s) - start))"
 lane_status=0
 wait "$lane_pid" || lane_status=$?
 lane_pid=
-printf '\n==> the other lane: cross, wasm, fuzz, doc blocks (its output, in order)\n'
+printf '\n==> the other lane: setup, cross, wasm, fuzz (its output, in order)\n'
 cat "$lane_log"
 if [ "$lane_status" -ne 0 ]; then
   printf '\nFAIL: the other lane (above), exit status %d\n' "$lane_status" >&2
