@@ -218,6 +218,7 @@ fn schedule_refuses_a_zero_step() {
         date: (2026, 3, 20),
         step_minutes: 0,
         settings: sky_core::controller::Settings::default(),
+        monthly: None,
     };
     let err = sky_train::controller::schedule(&config, &mut Vec::new())
         .expect_err("a zero step must be refused");

@@ -16,6 +16,8 @@ const AOD: f32 = sky_core::daylight::DEFAULT_AOD;
 fn settings() -> Settings {
     Settings {
         aerosol_optical_depth: AOD,
+        ozone_du: sky_core::daylight::OZONE_DU,
+        precipitable_water: sky_core::efficacy::DEFAULT_PRECIPITABLE_WATER,
         full_scale_lux: 10_000.0,
         ..Settings::default()
     }

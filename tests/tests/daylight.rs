@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
 use sky_core::Sun;
-use sky_core::daylight::{self, Daylight};
+use sky_core::daylight::{self, ClearAtmosphere, Daylight};
 use sky_train::daylight_tables as tables;
 use sky_train::physical::{PhysicalAtmosphere, Resolution, cache};
 
@@ -67,7 +67,8 @@ fn model(h: f64, aod: f64) -> Daylight {
 #[test]
 fn tables_regenerate() {
     let samples = tables::read_samples(&root().join(tables::DATA_PATH)).expect("sample file");
-    let fresh = tables::rust_source(&samples, &tables::beam());
+    let site = tables::read_site_samples(&root().join(tables::SITE_DATA_PATH)).expect("site file");
+    let fresh = tables::rust_source(&samples, &site, &tables::beam());
     let checked_in =
         std::fs::read_to_string(root().join(tables::TABLES_PATH)).expect("sky-core tables");
     assert!(
@@ -455,5 +456,82 @@ fn sky_avx2_kernel_is_as_accurate_as_one_direction() {
     eprintln!(
         "largest error against f64, of the direction's largest channel: AVX2 + FMA {worst_fast:.2e} \
          (rgb {worst_rgb:.2e} of the row's reach), xyz {worst_one:.2e}"
+    );
+}
+
+/// The site's axes (surface pressure, ozone) against the reference's held-out atmospheres
+/// (`daylight_tables::SITE_CHECKS`, sampled into `sky-train/data/daylight_site.csv` by the same
+/// `--sample` step, none of them a node): the diffuse illuminance, its chromaticity and
+/// melanopic EDI at every sun node from −12° to 90°, and the direct normal illuminance.
+#[test]
+#[allow(clippy::cast_possible_truncation)]
+fn site_axes_against_the_reference() {
+    let site = tables::read_site_samples(&root().join(tables::SITE_DATA_PATH)).expect("site file");
+    let mut failures = Vec::new();
+    for (aod, z, o3) in tables::SITE_CHECKS {
+        let atmosphere = ClearAtmosphere {
+            aerosol_optical_depth: aod as f32,
+            elevation_m: z as f32,
+            ozone_du: o3 as f32,
+        };
+        // (worst relative error, at h) for day 0-90 and twilight -12-0: diffuse Y, melanopic;
+        // worst |dx|, |dy|; worst direct normal Y (by day).
+        let (mut day, mut dusk, mut mel, mut xy, mut direct) = (
+            (0.0f64, 0.0),
+            (0.0f64, 0.0),
+            (0.0f64, 0.0),
+            (0.0f64, 0.0),
+            (0.0f64, 0.0),
+        );
+        for r in site.iter().filter(|r| {
+            (r.aod, r.site_elevation_m, r.ozone_du) == (aod, z, o3) && r.elevation_deg >= -12.0
+        }) {
+            let h = r.elevation_deg;
+            let m = Daylight::with_atmosphere(sun(h), &atmosphere).expect("in range");
+            let d = m.diffuse();
+            let e = (f64::from(d.y) / r.xyzm[1] - 1.0).abs();
+            let band = if h >= 0.0 { &mut day } else { &mut dusk };
+            if e > band.0 {
+                *band = (e, h);
+            }
+            let em = (f64::from(m.diffuse_melanopic_edi()) / r.xyzm[3] - 1.0).abs();
+            if em > mel.0 {
+                mel = (em, h);
+            }
+            let (x, y) = daylight::chromaticity(d);
+            let sum: f64 = r.xyzm[..3].iter().sum();
+            let exy = (f64::from(x) - r.xyzm[0] / sum)
+                .abs()
+                .max((f64::from(y) - r.xyzm[1] / sum).abs());
+            if exy > xy.0 {
+                xy = (exy, h);
+            }
+            if h >= 2.0 {
+                let ed = (f64::from(m.direct_normal().y) / r.direct_normal_lux - 1.0).abs();
+                if ed > direct.0 {
+                    direct = (ed, h);
+                }
+            }
+        }
+        println!(
+            "aod {aod}, {z} m, {o3} DU: diffuse worst {:.3} % at {} deg (0-90), {:.3} % at {} deg (-12-0); melanopic {:.3} % at {} deg; chromaticity {:.5} at {} deg; direct normal {:.3} % at {} deg (2-90)",
+            100.0 * day.0,
+            day.1,
+            100.0 * dusk.0,
+            dusk.1,
+            100.0 * mel.0,
+            mel.1,
+            xy.0,
+            xy.1,
+            100.0 * direct.0,
+            direct.1
+        );
+        if day.0 > 0.02 || dusk.0 > 0.05 || mel.0 > 0.05 || xy.0 > 0.002 || direct.0 > 0.01 {
+            failures.push((aod, z, o3));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "beyond 2 % (day), 5 % (twilight, melanopic), 0.002 (x, y) or 1 % (direct): {failures:?}"
     );
 }

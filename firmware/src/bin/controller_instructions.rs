@@ -196,6 +196,8 @@ fn run(counts: &mut [Counts; 6], per_instruction: f64, empty: u64) -> Result<boo
     let instructions = |t: u64| (t.saturating_sub(empty) as f64 / per_instruction + 0.5) as u32;
     let settings = Settings {
         aerosol_optical_depth: AOD,
+        ozone_du: sky_core::daylight::OZONE_DU,
+        precipitable_water: sky_core::efficacy::DEFAULT_PRECIPITABLE_WATER,
         light: Light::Global,
         full_scale_lux: FULL_SCALE_LUX,
         sun: SunAlgorithm::Fast,
