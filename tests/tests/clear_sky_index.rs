@@ -13,7 +13,7 @@
 //!
 //! Not met (so the test is `#[ignore]`d, and fails when run with `--ignored`): Tucson and
 //! Golden are inside the bounds, Alamosa (a snow-covered January valley; the tables' ground
-//! albedo is 0.2) and Payerne (June; the index falls from 1.1 with the sun 5-10° up to 0.93
+//! albedo is 0.2) and Payerne (June; the index falls from 1.16 with the sun 5-10° up to 0.93
 //! above 60°) are not. docs/daylight.md has the figures and what is known of why.
 
 use std::collections::HashSet;

@@ -450,6 +450,53 @@ mod tests {
         assert_eq!(disc_fraction(-0.01), 0.0);
     }
 
+    /// The US Standard Atmosphere 1976's Table I: 845.59 hPa at 1,500 m and 701.21 hPa at
+    /// 3,000 m (geometric), over 1013.25 hPa.
+    #[test]
+    fn pressure_ratio_is_the_standard_atmosphere() {
+        for (z, p) in [(1500.0, 845.59), (3000.0, 701.21), (0.0, 1013.25)] {
+            let a = ClearAtmosphere {
+                elevation_m: z,
+                ..ClearAtmosphere::default()
+            };
+            let r = a.pressure_ratio();
+            assert!((r - p / 1013.25).abs() < 2e-4, "{z} m: {r}");
+        }
+    }
+
+    #[test]
+    fn atmosphere_out_of_range_is_named() {
+        let sun = Sun::new(0.5, 0.0).expect("sun");
+        for (a, name) in [
+            (
+                ClearAtmosphere {
+                    elevation_m: 5001.0,
+                    ..ClearAtmosphere::default()
+                },
+                "site elevation [m]",
+            ),
+            (
+                ClearAtmosphere {
+                    ozone_du: f32::NAN,
+                    ..ClearAtmosphere::default()
+                },
+                "ozone column [DU]",
+            ),
+            (
+                ClearAtmosphere {
+                    aerosol_optical_depth: 0.9,
+                    ..ClearAtmosphere::default()
+                },
+                "aerosol optical depth",
+            ),
+        ] {
+            match Daylight::with_atmosphere(sun, &a) {
+                Err(SkyError::OutOfRange { parameter, .. }) => assert_eq!(parameter, name),
+                other => panic!("{other:?}"),
+            }
+        }
+    }
+
     #[test]
     fn bracket_clamps() {
         let nodes = [0.0, 1.0, 3.0];

@@ -75,7 +75,8 @@ pub struct SkyArgs {
     /// Longitude in degrees, east positive (-180 to 180), with --time.
     #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = longitude)]
     lon: Option<f64>,
-    /// Elevation of the place in metres (-500 to 10000; default 0), with --time.
+    /// Elevation of the place in metres (-500 to 10000; default 0), with --time; for --model
+    /// physical also the ground's altitude, the air above it (-500 to 6000).
     #[arg(long, value_name = "M", allow_negative_numbers = true, value_parser = elevation)]
     elevation: Option<f64>,
     /// CIE standard general sky type, 1 (overcast) to 15 (cloudless, turbid) (cie only).
