@@ -503,8 +503,8 @@ fn i16s(v: impl IntoIterator<Item = f64>, scale: f64) -> String {
 }
 
 /// The site's sensitivities from the sea-level `samples` and the `site` samples (both as read):
-/// d ln E / d(P / P₀) per [optical depth][elevation][channel], and d ln E / d(O₃ / 100 DU) per
-/// [elevation][channel].
+/// d ln E / d(P / P₀) per optical depth, sun elevation and channel, and d ln E / d(O₃ / 100 DU)
+/// per sun elevation and channel.
 #[must_use]
 pub fn sensitivities(
     samples: &[DiffuseSample],
