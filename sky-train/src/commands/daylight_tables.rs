@@ -47,9 +47,10 @@ pub struct DaylightTablesArgs {
 /// Bad paths as a [`crate::args::ParamError`]; a data file that is not the sampled grid; a failed write.
 pub fn run(args: &DaylightTablesArgs, output: &mut dyn Write) -> Result<()> {
     check_output("--data", &args.data, "csv")?;
-    check_output("--site-data", &args.site_data, "csv")?;
     check_output("--out", &args.out, "rs")?;
     if args.sample {
+        // Both outputs are checked before the minutes of sampling.
+        check_output("--site-data", &args.site_data, "csv")?;
         let dir = cache::CacheDir::new(args.cache_dir.as_deref());
         if !args.site_only {
             let samples = tables::sample(&dir, true)?;
