@@ -57,7 +57,7 @@ pub struct ScheduleArgs {
     /// precipitable water at which Perez's efficacy turns a measured W/m2 into lux; each row
     /// by its month), else a named preset: record (the USNO clear-sky record's turbid sky, AOD
     /// 0.38, 300 DU, for validation against it) or clean (OPAC continental average, AOD
-    /// 0.151, 300 DU). --aod, --turbidity and --ozone-du replace its values.
+    /// 0.151, 300 DU). --aod, --turbidity, --ozone-du and --water-vapour replace its values.
     #[arg(long, value_enum, value_name = "PRESET")]
     pub atmosphere: Option<crate::physical::atmosphere::Preset>,
     /// Aerosol optical depth at 550 nm of the clear atmosphere (0.05 to 0.8; default the
@@ -68,6 +68,11 @@ pub struct ScheduleArgs {
     /// month's, or 300 with a preset). It matters in twilight: 7-14 % of the light per 50 DU.
     #[arg(long, value_name = "DU", value_parser = ozone)]
     pub ozone_du: Option<f32>,
+    /// Precipitable water in cm (0 to 10) at which Perez's efficacy turns a measured W/m2 into
+    /// lux (default the site's month's, or 2 with a preset; the clear sky's light itself does
+    /// not depend on it, docs/daylight.md).
+    #[arg(long, value_name = "CM", value_parser = water)]
+    pub water_vapour: Option<f32>,
     /// Preetham's turbidity instead of --aod (2 to 8.5), mapped to the aerosol optical depth as
     /// the physical atmosphere maps it (`Atmosphere::from_turbidity`).
     #[arg(long, value_name = "T", value_parser = turbidity)]
@@ -124,6 +129,12 @@ fn turbidity(s: &str) -> Result<f32, String> {
     Ok(atm.aod_550 as f32)
 }
 
+/// Precipitable water, cm (sky-core's efficacy takes 0 to 10).
+#[allow(clippy::cast_possible_truncation)]
+fn water(s: &str) -> Result<f32, String> {
+    in_range(s, 0.0, 10.0, "a precipitable water in cm").map(|v| v as f32)
+}
+
 /// A site's elevation the clear sky takes (sky-core's `daylight::ELEVATION_RANGE_M`).
 fn elevation(s: &str) -> Result<f64, String> {
     in_range(s, -500.0, 5000.0, "an elevation in metres")
@@ -142,8 +153,8 @@ fn site_elevation(args: &ScheduleArgs) -> f64 {
 }
 
 /// Each month's (aerosol optical depth, ozone column, precipitable water) of the site's clear
-/// atmosphere, the optical depth clamped to sky-core's tables' range; `--aod`/`--turbidity`
-/// and `--ozone-du` replace theirs. `None` with a preset.
+/// atmosphere, the optical depth clamped to sky-core's tables' range; `--aod`/`--turbidity`,
+/// `--ozone-du` and `--water-vapour` replace theirs. `None` with a preset.
 ///
 /// # Errors
 /// A [`crate::args::ParamError`] for a site the climatology refuses.
@@ -161,7 +172,7 @@ fn monthly(args: &ScheduleArgs, elevation: f64) -> Result<Option<[(f32, f32, f32
         *out = (
             args.aod.or(args.turbidity).unwrap_or(aod),
             args.ozone_du.unwrap_or((s.ozone_du as f32).clamp(lo, hi)),
-            s.water_vapour_cm as f32,
+            args.water_vapour.unwrap_or(s.water_vapour_cm as f32),
         );
     }
     Ok(Some(months))
@@ -192,7 +203,9 @@ pub fn run(args: &ScheduleArgs, output: &mut dyn Write) -> Result<()> {
         settings: Settings {
             aerosol_optical_depth: args.aod.or(args.turbidity).unwrap_or(preset),
             ozone_du: args.ozone_du.unwrap_or(sky_core::daylight::OZONE_DU),
-            precipitable_water: sky_core::efficacy::DEFAULT_PRECIPITABLE_WATER,
+            precipitable_water: args
+                .water_vapour
+                .unwrap_or(sky_core::efficacy::DEFAULT_PRECIPITABLE_WATER),
             light: if args.sky_only {
                 Light::Sky
             } else {
