@@ -311,6 +311,8 @@ fn controller_day() -> Result<ControllerDay, Box<dyn Error>> {
 fn controller_settings() -> controller::Settings {
     controller::Settings {
         aerosol_optical_depth: CONTROLLER_AOD,
+        ozone_du: sky_core::daylight::OZONE_DU,
+        precipitable_water: sky_core::efficacy::DEFAULT_PRECIPITABLE_WATER,
         light: controller::Light::Global,
         full_scale_lux: CONTROLLER_FULL_SCALE_LUX,
         sun: SunAlgorithm::Fast,

@@ -22,7 +22,7 @@ use glam::Vec3;
 
 use crate::cct::Cct;
 use crate::color::{self, Xyy};
-use crate::daylight::{self, Daylight};
+use crate::daylight::{self, ClearAtmosphere, Daylight};
 pub use crate::decomposition::Decomposition;
 use crate::decomposition::{
     self as split, ClearSky, ENGERER2_2015, ENGERER2_2019_1MIN, MAX_STABILITY_GAP_MINUTES,
@@ -122,8 +122,17 @@ pub enum Light {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Settings {
     /// The clear atmosphere's aerosol optical depth at 550 nm ([`daylight::MIN_AOD`] to
-    /// [`daylight::MAX_AOD`]; [`daylight::DEFAULT_AOD`] is the clear-sky record's).
+    /// [`daylight::MAX_AOD`]; [`daylight::DEFAULT_AOD`] is the clear-sky record's; a site's
+    /// month: `sky-train site`).
     pub aerosol_optical_depth: f32,
+    /// The clear atmosphere's total ozone column, Dobson units ([`daylight::OZONE_RANGE_DU`];
+    /// default [`daylight::OZONE_DU`]; it matters in twilight). The surface pressure comes from
+    /// the site's elevation ([`clear_atmosphere`]).
+    pub ozone_du: f32,
+    /// The site's precipitable water, cm, at which a measured irradiance becomes lux (Perez's
+    /// efficacies; default [`crate::efficacy::DEFAULT_PRECIPITABLE_WATER`]): a dry site's clear
+    /// light has more lumens per watt.
+    pub precipitable_water: f32,
     /// The light followed.
     pub light: Light,
     /// The horizontal illuminance, lux, at which the luminaire gives its full output.
@@ -144,6 +153,8 @@ impl Default for Settings {
     fn default() -> Self {
         Self {
             aerosol_optical_depth: daylight::DEFAULT_AOD,
+            ozone_du: daylight::OZONE_DU,
+            precipitable_water: crate::efficacy::DEFAULT_PRECIPITABLE_WATER,
             light: Light::Global,
             full_scale_lux: 10_000.0,
             sun: SunAlgorithm::Fast,
@@ -181,14 +192,27 @@ pub struct Step {
     pub weather: Option<Weather>,
 }
 
-/// The clear sky's global horizontal illuminance for `sun` (XYZ, Y in lux), the one source of
-/// the controller's clear-sky level: [`Daylight`] (sun and sky) under an atmosphere of aerosol
-/// optical depth `aod`. The clear-sky index is measured over it.
+/// The clear sky's global horizontal illuminance for `sun` (XYZ, Y in lux) under an atmosphere
+/// of aerosol optical depth `aod` at sea level with the default ozone ([`Daylight::new`]). The
+/// controller's own clear-sky level is at its site: [`Daylight::with_atmosphere`] with
+/// [`clear_atmosphere`], whose global illuminance the clear-sky index is measured over.
 ///
 /// # Errors
 /// [`SkyError::OutOfRange`] for `aod` outside [[`daylight::MIN_AOD`], [`daylight::MAX_AOD`]].
 pub fn clear_sky_illuminance(sun: &SunPosition, aod: f32) -> Result<Vec3, SkyError> {
     Ok(Daylight::new(sun.sun(), aod)?.global())
+}
+
+/// The controller's clear atmosphere at `site`: the settings' aerosol optical depth and ozone
+/// column, and the site's elevation (its surface pressure).
+#[must_use]
+pub fn clear_atmosphere(site: &Site, settings: &Settings) -> ClearAtmosphere {
+    #[allow(clippy::cast_possible_truncation)] // metres, validated by the daylight tables
+    ClearAtmosphere {
+        aerosol_optical_depth: settings.aerosol_optical_depth,
+        elevation_m: site.elevation() as f32,
+        ozone_du: settings.ozone_du,
+    }
 }
 
 /// The clear sky's global horizontal irradiance, W/m², for a clear-sky global illuminance
@@ -436,7 +460,7 @@ fn separation(
 /// ```
 ///
 /// # Errors
-/// [`SkyError::OutOfRange`] for an aerosol optical depth out of range, a `full_scale_lux` that
+/// [`SkyError::OutOfRange`] for an aerosol optical depth, ozone column or site elevation out of the daylight tables' range ([`daylight::ClearAtmosphere`]), a `full_scale_lux` that
 /// is not positive and finite, a year outside the sun algorithm's range ([`SunAlgorithm`]), or
 /// a bad measurement ([`Measurement`]).
 #[inline] // with a literal `None`, the measurement path is left out of the binary
@@ -576,7 +600,7 @@ fn step_at(
             max: f32::MAX,
         });
     }
-    let daylight = Daylight::new(sun.sun(), settings.aerosol_optical_depth)?;
+    let daylight = Daylight::with_atmosphere(sun.sun(), &clear_atmosphere(site, settings))?;
     let clear = daylight.global() * clear_scale;
     let (followed, followed_melanopic) = match settings.light {
         Light::Global => (clear, daylight.melanopic_edi() * clear_scale),
@@ -601,7 +625,12 @@ fn step_at(
                 &daylight,
                 history,
             );
-            let reading = m.read_with(zenith, time.day_of_year(), &separation)?;
+            let reading = m.read_with_water(
+                zenith,
+                time.day_of_year(),
+                &separation,
+                settings.precipitable_water,
+            )?;
             history.last = last;
             let lux = reading.global_illuminance;
             let index = (clear.y >= MIN_CLEAR_SKY_LUX).then(|| (lux / clear.y).min(f32::MAX));

@@ -77,6 +77,10 @@ pub struct Reading {
     pub direct_normal_irradiance: f32,
     /// Sky clearness ε and brightness Δ, with the sun above the horizon.
     pub condition: Option<SkyCondition>,
+    /// The precipitable water, cm, Perez's efficacies were taken at
+    /// ([`crate::efficacy::DEFAULT_PRECIPITABLE_WATER`] unless given:
+    /// [`Measurement::read_with_water`]).
+    pub precipitable_water: f32,
 }
 
 impl Reading {
@@ -88,7 +92,7 @@ impl Reading {
         let overcast = SkyCondition::new(1.0, 0.0);
         let k = match (self.condition, overcast) {
             (Some(c), _) | (None, Ok(c)) => {
-                Efficacy::new(&c, sun_zenith, DEFAULT_PRECIPITABLE_WATER).diffuse
+                Efficacy::new(&c, sun_zenith, self.precipitable_water).diffuse
             }
             (None, Err(_)) => 0.0,
         };
@@ -105,7 +109,7 @@ impl Reading {
         match self.condition {
             Some(c) if sun_zenith <= FRAC_PI_2 => {
                 let z = sun_zenith.max(0.0);
-                let k = Efficacy::new(&c, z, DEFAULT_PRECIPITABLE_WATER).direct;
+                let k = Efficacy::new(&c, z, self.precipitable_water).direct;
                 self.direct_normal_irradiance * math::cos(z) * k
             }
             _ => 0.0,
@@ -221,6 +225,27 @@ impl Measurement {
         day_of_year: u32,
         separation: &Separation,
     ) -> Result<Reading, SkyError> {
+        self.read_with_water(
+            sun_zenith,
+            day_of_year,
+            separation,
+            DEFAULT_PRECIPITABLE_WATER,
+        )
+    }
+
+    /// [`Measurement::read_with`] with Perez's efficacies at `precipitable_water` cm (the
+    /// site's: a dry site's clear light has more lumens per watt; NaN or negative counts as 0,
+    /// more than 10 cm as 10, as [`Efficacy::new`] takes it).
+    ///
+    /// # Errors
+    /// As [`Measurement::read_with`].
+    pub fn read_with_water(
+        self,
+        sun_zenith: f32,
+        day_of_year: u32,
+        separation: &Separation,
+        precipitable_water: f32,
+    ) -> Result<Reading, SkyError> {
         let up = sun_zenith <= FRAC_PI_2;
         let z = if up { sun_zenith.max(0.0) } else { FRAC_PI_2 };
         let day = day_of_year;
@@ -234,7 +259,7 @@ impl Measurement {
                 SkyCondition::new(1.0, 0.0)
             }
         };
-        let efficacy = |c: &SkyCondition| Efficacy::new(c, z, DEFAULT_PRECIPITABLE_WATER).global;
+        let efficacy = |c: &SkyCondition| Efficacy::new(c, z, precipitable_water).global;
         // Global irradiance → (diffuse, direct normal): the separation by day, all diffuse at
         // night.
         let split = |g: f32| -> Result<(f32, f32), SkyError> {
@@ -298,6 +323,7 @@ impl Measurement {
             diffuse_irradiance: diffuse,
             direct_normal_irradiance: direct,
             condition: up.then_some(c),
+            precipitable_water,
         })
     }
 }

@@ -11,7 +11,7 @@ use crate::commands::{
     self, SkyArgs, bench::BenchArgs, daylight::DaylightArgs, daylight_sky::DaylightSkyArgs,
     daylight_tables::DaylightTablesArgs, eval::EvalArgs, export::ExportArgs, fit_aod::FitAodArgs,
     fit_sh::FitShArgs, gallery::GalleryArgs, locus_table::LocusTableArgs, render::RenderArgs,
-    schedule::ScheduleArgs, showcase::ShowcaseArgs, size_study::SizeStudyArgs,
+    schedule::ScheduleArgs, showcase::ShowcaseArgs, site::SiteArgs, size_study::SizeStudyArgs,
     spectrum::SpectrumArgs, train::TrainArgs,
 };
 
@@ -120,6 +120,15 @@ pub enum Command {
     /// the ratio table at the rounded fit (`--atmosphere record`'s value). Precomputes one
     /// atmosphere per evaluation, not cached: minutes.
     FitAod(FitAodArgs),
+    /// A site's clear atmosphere month by month, as CSV
+    /// `month,aod_550,angstrom,ozone_du,water_vapour_cm,linke_turbidity,elevation_m,pressure_hpa`:
+    /// the aerosol optical depth at 550 nm from the SoDa Linke turbidity climatology (Remund et
+    /// al. 2003, 1-degree cells) by Ineichen 2008's conversion, Angstrom exponent 1.3, ozone by
+    /// Van Heuklon 1979, precipitable water from the AFGL reference atmospheres by latitude and
+    /// season, the surface pressure of the US Standard Atmosphere at the elevation. schedule,
+    /// daylight and spectrum use the site's month unless --atmosphere or a constituent's flag
+    /// says otherwise.
+    Site(SiteArgs),
 }
 
 /// Runs `command`, reading `sample`'s and `cct`'s input from `input` and writing its output to
@@ -149,6 +158,7 @@ pub fn execute(command: Command, input: &mut dyn BufRead, output: &mut dyn Write
         Command::DaylightTables(args) => commands::daylight_tables::run(&args, output),
         Command::DaylightSky(args) => commands::daylight_sky::run(&args, output),
         Command::FitAod(args) => commands::fit_aod::run(&args, output),
+        Command::Site(args) => commands::site::run(&args, output),
     }
 }
 

@@ -35,6 +35,31 @@ pub struct ScheduleConfig {
     pub step_minutes: u32,
     /// The controller's settings: aerosol optical depth, the light followed, full scale.
     pub settings: Settings,
+    /// Each month's aerosol optical depth, ozone column and precipitable water (January
+    /// first), in place of the settings' for a row of that month; `None` keeps the settings'
+    /// all year.
+    pub monthly: Option<[(f32, f32, f32); 12]>,
+}
+
+impl ScheduleConfig {
+    /// The settings for a time in `month` (1-12): [`Self::settings`] with the month's
+    /// aerosol optical depth, ozone column and precipitable water when [`Self::monthly`] has
+    /// them.
+    #[must_use]
+    pub fn settings_in(&self, month: u32) -> Settings {
+        match self.monthly {
+            Some(months) => {
+                let (aod, ozone, water) = months[(month.clamp(1, 12) - 1) as usize];
+                Settings {
+                    aerosol_optical_depth: aod,
+                    ozone_du: ozone,
+                    precipitable_water: water,
+                    ..self.settings
+                }
+            }
+            None => self.settings,
+        }
+    }
 }
 
 /// The CSV header of `schedule`.
@@ -634,7 +659,7 @@ pub fn schedule_measured(
         step_with_history(
             &r.time,
             &site,
-            &config.settings,
+            &config.settings_in(r.time.month()),
             &lamp,
             Some(r.measurement),
             history,
@@ -664,7 +689,7 @@ pub fn schedule_measured(
                 let (s, c) = step_calibrated(
                     &r.time,
                     &site,
-                    &config.settings,
+                    &config.settings_in(r.time.month()),
                     &lamp,
                     r.measurement,
                     cal,
@@ -716,13 +741,14 @@ pub fn schedule(config: &ScheduleConfig, output: &mut dyn Write) -> Result<()> {
         .map_err(|e| ParamError(format!("--lat/--lon/--elevation: {e}")))?;
     let lamp = example_luminaire()?;
     let (year, month, day) = config.date;
+    let settings = config.settings_in(month);
     writeln!(output, "{SCHEDULE_HEADER}")?;
     let mut minute = 0u32;
     while minute < 24 * 60 {
         let (hour, min) = (minute / 60, minute % 60);
         let time = UtcTime::new(year, month, day, hour, min, 0.0)
             .map_err(|e| ParamError(format!("--date: {e}")))?;
-        let s = step(&time, &site, &config.settings, &lamp, None).with_context(|| {
+        let s = step(&time, &site, &settings, &lamp, None).with_context(|| {
             format!("schedule at {year:04}-{month:02}-{day:02}T{hour:02}:{min:02} (--aod, --full-scale-lux)")
         })?;
         writeln!(

@@ -25,6 +25,7 @@ pub mod plot;
 pub mod reference;
 pub mod render;
 pub mod sh;
+pub mod site;
 pub mod sources;
 pub mod study;
 pub mod style_file;

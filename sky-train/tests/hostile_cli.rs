@@ -682,6 +682,8 @@ fn interpolate_refuses_more_frames_than_the_cap() {
 #[test]
 fn daylight_tables_data_is_range_checked() {
     let shipped = concat!(env!("CARGO_MANIFEST_DIR"), "/data/daylight_diffuse.csv");
+    // The site's samples as shipped (the default path is relative to the repository's root).
+    let site = concat!(env!("CARGO_MANIFEST_DIR"), "/data/daylight_site.csv");
     let good = std::fs::read_to_string(shipped).expect("shipped data");
     let dir = tempfile::tempdir().expect("temp dir");
     let data = dir.path().join("d.csv");
@@ -722,6 +724,8 @@ fn daylight_tables_data_is_range_checked() {
                 "daylight-tables",
                 "--data",
                 path(&data),
+                "--site-data",
+                site,
                 "--out",
                 path(&out),
             ],
@@ -737,6 +741,8 @@ fn daylight_tables_data_is_range_checked() {
             "daylight-tables",
             "--data",
             path(&data),
+            "--site-data",
+            site,
             "--out",
             path(&out),
         ],

@@ -218,6 +218,7 @@ fn schedule_refuses_a_zero_step() {
         date: (2026, 3, 20),
         step_minutes: 0,
         settings: sky_core::controller::Settings::default(),
+        monthly: None,
     };
     let err = sky_train::controller::schedule(&config, &mut Vec::new())
         .expect_err("a zero step must be refused");
@@ -231,7 +232,7 @@ fn schedule_refuses_a_zero_step() {
 /// The controller's daylight (sky-core's tables, as `schedule` prints them) against the
 /// measured clear-sky record, USNO Circular 171 (Janiczek & DeYoung 1987, after Brown 1952; its
 /// transcription is checked in `tests/tests/physical.rs`): global horizontal illuminance of
-/// Vienna's longest day, every 5 minutes, at the geometric sun elevation, within issue 15's
+/// Vienna's longest day under the record's atmosphere at sea level (`--atmosphere record --elevation 0`), every 5 minutes, at the geometric sun elevation, within issue 15's
 /// bounds: 10 % at 10-90°, 15 % at 0-10°, a factor 1.5 from −6° to 0°, 2.5 from −12° to −6°;
 /// and the CCT of the global light at least 9,000 K at sunset and 12,000 K at −4° (the rows
 /// nearest those elevations).
@@ -249,6 +250,10 @@ fn schedule_against_the_clear_sky_record() {
             "2026-06-21",
             "--step",
             "5",
+            "--atmosphere",
+            "record",
+            "--elevation",
+            "0",
         ],
         "",
     )

@@ -6,8 +6,9 @@
 use proptest::prelude::*;
 use sky_core::SkyError;
 use sky_core::controller::{
-    Measurement, Settings, Step, clear_sky_illuminance, example_luminaire, step,
+    Measurement, Settings, Step, clear_atmosphere, example_luminaire, step,
 };
+use sky_core::daylight::Daylight;
 use sky_core::led::Luminaire;
 use sky_core::solar::{Site, UtcTime};
 
@@ -16,6 +17,8 @@ const AOD: f32 = sky_core::daylight::DEFAULT_AOD;
 fn settings() -> Settings {
     Settings {
         aerosol_optical_depth: AOD,
+        ozone_du: sky_core::daylight::OZONE_DU,
+        precipitable_water: sky_core::efficacy::DEFAULT_PRECIPITABLE_WATER,
         full_scale_lux: 10_000.0,
         ..Settings::default()
     }
@@ -53,11 +56,16 @@ fn cloud_factor(t: f64) -> f64 {
     }
 }
 
-/// The lux reading at `time`: the clear-sky illuminance times the cloud factor (exactly the
-/// clear-sky value where the factor is 1).
+/// The lux reading at `time`: the controller's clear-sky illuminance (its settings' atmosphere
+/// at Vienna's elevation) times the cloud factor (exactly the clear-sky value where the factor
+/// is 1).
 fn lux_reading(time: &UtcTime, t: f64) -> f32 {
     let sun = settings().sun.position(time, &vienna()).expect("sun");
-    let clear = clear_sky_illuminance(&sun, AOD).expect("clear").y;
+    let atmosphere = clear_atmosphere(&vienna(), &settings());
+    let clear = Daylight::with_atmosphere(sun.sun(), &atmosphere)
+        .expect("clear")
+        .global()
+        .y;
     let f = cloud_factor(t);
     #[allow(clippy::cast_possible_truncation)]
     if f == 1.0 {
@@ -122,12 +130,16 @@ fn change(a: &Step, b: &Step) -> (f64, f64, f64, f64) {
 /// Whether the outputs move continuously from `t` over the next two seconds: the change over
 /// the first second is between 30 % and 70 % of the change over two (a jump inside either
 /// second would make it near 100 % or near 0 %), for each of illuminance, CCT, Duv and levels
-/// whose two-second change is above rounding (`floor`). Returns the largest two-second changes.
+/// whose two-second change is above rounding (`floor`); the levels are not judged where the
+/// channels at full output change within the two seconds (the documented clip hands full
+/// output from one channel to another: a kink, not a step). Returns the largest two-second changes.
 fn continuous_over_two_seconds(
     at_offset: impl Fn(f64) -> Step,
     floor: (f64, f64, f64, f64),
 ) -> Result<(f64, f64, f64, f64), String> {
     let (a, b, c) = (at_offset(0.0), at_offset(1.0), at_offset(2.0));
+    let full = |s: &Step| s.drive.levels.map(|l| l >= 1.0);
+    let clip_crossed = full(&a) != full(&c);
     let (one, two) = (change(&a, &b), change(&a, &c));
     let pairs = [
         (one.0, two.0, floor.0),
@@ -136,8 +148,11 @@ fn continuous_over_two_seconds(
         (one.3, two.3, floor.3),
     ];
     for (k, (o, t, f)) in pairs.iter().enumerate() {
-        if *t > *f && !(0.3 * t..=0.7 * t).contains(o) {
-            return Err(format!("output {k}: {o:e} in the first second of {t:e}"));
+        if *t > *f && !(0.3 * t..=0.7 * t).contains(o) && !(k == 3 && clip_crossed) {
+            return Err(format!(
+                "output {k}: {o:e} in the first second of {t:e} (levels {:?}, {:?}, {:?})",
+                a.drive.levels, b.drive.levels, c.drive.levels
+            ));
         }
     }
     Ok(two)

@@ -1046,6 +1046,8 @@ fn schedule_decomposition_flag_selects_the_model() {
             "-110.96",
             "--elevation",
             "786",
+            "--atmosphere",
+            "record",
             "--measurements",
             path,
         ];

@@ -21,7 +21,8 @@ fn run(args: &[&str], input: &str) -> Result<String, (String, bool)> {
     Ok(String::from_utf8(output).expect("UTF-8"))
 }
 
-/// `schedule --measurements FILE` at Vienna.
+/// `schedule --measurements FILE` at Vienna, under the record's atmosphere at sea level (the
+/// references below are taken there).
 fn schedule_vienna(file: &str) -> Result<String, (String, bool)> {
     run(
         &[
@@ -30,6 +31,10 @@ fn schedule_vienna(file: &str) -> Result<String, (String, bool)> {
             "48.21",
             "--lon",
             "16.37",
+            "--atmosphere",
+            "record",
+            "--elevation",
+            "0",
             "--measurements",
             file,
         ],
@@ -327,6 +332,10 @@ fn schedule_measurements_at_the_clear_sky_level_give_the_clear_sky_rows() {
             "2026-03-20",
             "--step",
             "60",
+            "--atmosphere",
+            "record",
+            "--elevation",
+            "0",
         ],
         "",
     )

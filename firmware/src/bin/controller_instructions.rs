@@ -12,7 +12,7 @@
 //! For each of the controller example's 144 steps (`src/bin/controller.rs`, the same site,
 //! date and configuration), this counts `sky_core::controller::step` as a whole and its parts
 //! called one by one as `step` calls them: the sun's position (the fast one, Grena 2012), the sky's constructor
-//! (`daylight::Daylight::new`: the diffuse tables and the direct beam's 47 spectral bins), the
+//! (`daylight::Daylight::with_atmosphere` at the site's elevation: the diffuse tables and the direct beam's 47 spectral bins), the
 //! global light (their sum), chromaticity and CCT (`cct_duv`) and the LED drive levels; the parts' results must equal
 //! the whole step's bit for bit. It prints the minimum, median and maximum over the day of
 //! each, in instructions (the bracket's own instructions subtracted).
@@ -25,7 +25,9 @@ use core::hint::black_box;
 use qemu_check::{entry, hprintln};
 use sky_core::SkyError;
 use sky_core::color::{self, Xyy};
-use sky_core::controller::{Decomposition, Light, Settings, example_luminaire, step};
+use sky_core::controller::{
+    Decomposition, Light, Settings, clear_atmosphere, example_luminaire, step,
+};
 use sky_core::daylight::{self, Daylight};
 use sky_core::solar::{Site, SunAlgorithm, UtcTime, grena};
 
@@ -196,6 +198,8 @@ fn run(counts: &mut [Counts; 6], per_instruction: f64, empty: u64) -> Result<boo
     let instructions = |t: u64| (t.saturating_sub(empty) as f64 / per_instruction + 0.5) as u32;
     let settings = Settings {
         aerosol_optical_depth: AOD,
+        ozone_du: sky_core::daylight::OZONE_DU,
+        precipitable_water: sky_core::efficacy::DEFAULT_PRECIPITABLE_WATER,
         light: Light::Global,
         full_scale_lux: FULL_SCALE_LUX,
         sun: SunAlgorithm::Fast,
@@ -208,7 +212,8 @@ fn run(counts: &mut [Counts; 6], per_instruction: f64, empty: u64) -> Result<boo
         let whole = whole?;
         let (t_sun, sun) = measure(|| grena::sun_position(&time, &site));
         let sun = sun?;
-        let (t_sky, sky) = measure(|| Daylight::new(sun.sun(), AOD));
+        let atmosphere = clear_atmosphere(&site, &settings);
+        let (t_sky, sky) = measure(|| Daylight::with_atmosphere(sun.sun(), &atmosphere));
         let sky = sky?;
         let (t_lux, illuminance) = measure(|| sky.global());
         let (t_cct, (colour, cct)) = measure(|| {
@@ -257,7 +262,7 @@ fn main() -> ! {
     let mut counts = [
         part("controller::step"),
         part("  sun position (Grena 2012)"),
-        part("  daylight (Daylight::new)"),
+        part("  daylight (Daylight::with_atmosphere)"),
         part("  global light (Daylight::global)"),
         part("  chromaticity and CCT (cct_duv)"),
         part("  LED drive (Luminaire::drive)"),

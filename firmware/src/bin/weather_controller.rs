@@ -62,6 +62,8 @@ fn cct_or_zero(s: &Step) -> (f32, f32) {
 fn settings() -> Settings {
     Settings {
         aerosol_optical_depth: AOD,
+        ozone_du: sky_core::daylight::OZONE_DU,
+        precipitable_water: sky_core::efficacy::DEFAULT_PRECIPITABLE_WATER,
         light: Light::Global,
         full_scale_lux: FULL_SCALE_LUX,
         sun: SunAlgorithm::Fast,

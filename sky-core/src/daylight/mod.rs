@@ -9,22 +9,29 @@
 //! * **The diffuse light** (the sky's): ln X, ln Y, ln Z and ln melanopic EDI against the sun
 //!   elevation at the reference's own sun-angle nodes (5° by day, 2° at dusk, 0.5° through
 //!   twilight, −18° to 90°: 73 nodes) and against the aerosol optical depth τ₅₅₀ at 0.05, 0.1,
-//!   0.2, 0.4 and 0.8 (linear in elevation, quadratic in ln τ₅₅₀; 5.8 KB).
+//!   0.2, 0.4 and 0.8 (linear in elevation, quadratic in ln τ₅₅₀), plus the site's terms:
+//!   (P / P₀ − 1) times the sensitivity of ln E to the surface pressure (per optical depth and
+//!   sun node, from the reference at 3,000 m) and (O₃ − 300 DU) / 100 DU times its sensitivity
+//!   to the ozone column (per sun node); all as 16-bit integers (6.4 KB).
 //! * **The direct beam** (the sun's): Beer-Lambert's law per 10 nm bin, 360-830 nm, with the
 //!   reference's vertical Rayleigh, aerosol and ozone optical depths and its relative air
 //!   masses on its own coordinate x = √(sin h) (256 nodes; spherical Earth, no refraction),
 //!   times the visible fraction of the sun's disc (its 959.63″ radius: a half disc at h = 0°,
-//!   none below −0.27°). Exact in τ₅₅₀; 4.4 KB.
+//!   none below −0.27°). Exact in τ₅₅₀, the ozone column and the pressure (the Rayleigh depth
+//!   scales with it); 4.4 KB.
 //!
 //! The tables hold the reference's default constituents (Ångström exponent, aerosol albedo and
-//! asymmetry, 1 AU; ozone [`OZONE_DU`] DU, ground albedo [`GROUND_ALBEDO`]); the aerosol optical
-//! depth is the one free parameter, [`MIN_AOD`] to [`MAX_AOD`], default [`DEFAULT_AOD`] (sky-train's
-//! `Atmosphere::default()` when the tables were generated). Below −18° (astronomical night) every
-//! quantity keeps its −18° value.
+//! asymmetry, 1 AU, ground albedo [`GROUND_ALBEDO`]); a site's clear atmosphere
+//! ([`ClearAtmosphere`]) sets the aerosol optical depth ([`MIN_AOD`] to [`MAX_AOD`], default
+//! [`DEFAULT_AOD`], sky-train's `Atmosphere::default()` when the tables were generated), the
+//! site's elevation (its surface pressure, [`ELEVATION_RANGE_M`]) and the ozone column
+//! ([`OZONE_RANGE_DU`], default [`OZONE_DU`]). Below −18° (astronomical night) every quantity
+//! keeps its −18° value.
 //!
 //! Error against the reference at elevations and optical depths between the nodes
 //! (`tests/tests/daylight.rs`): illuminance within 2 % from 0° to 90° and 5 % from −12° to 0°,
-//! chromaticity within 0.002, melanopic EDI within 2 %.
+//! chromaticity within 0.002, melanopic EDI within 2 %; at held-out site elevations and ozone
+//! columns the bounds `docs/daylight.md` states.
 //!
 //! ```
 //! use sky_core::daylight::Daylight;
@@ -58,8 +65,13 @@ pub const MIN_AOD: f32 = tables::AOD[0];
 pub const MAX_AOD: f32 = tables::AOD[tables::AOD.len() - 1];
 /// The default atmosphere's aerosol optical depth at 550 nm ([`Daylight::clear`]).
 pub const DEFAULT_AOD: f32 = tables::DEFAULT_AOD;
-/// The ozone column of the tables, Dobson units.
+/// The ozone column of the tables' nodes, Dobson units: the default.
 pub const OZONE_DU: f32 = tables::OZONE_DU;
+/// The site elevations [`ClearAtmosphere`] takes, m (their surface pressure is the US Standard
+/// Atmosphere 1976's: 1.06 to 0.54 of sea level's).
+pub const ELEVATION_RANGE_M: (f32, f32) = (-500.0, 5000.0);
+/// The ozone columns [`ClearAtmosphere`] takes, Dobson units.
+pub const OZONE_RANGE_DU: (f32, f32) = (200.0, 500.0);
 /// The ground's Lambertian albedo of the tables (the diffuse light includes its reflection
 /// back from the sky; [`Daylight::tilted`] adds its reflection onto a tilted plane).
 pub const GROUND_ALBEDO: f32 = tables::GROUND_ALBEDO;
@@ -70,13 +82,88 @@ pub const LOWEST_ELEVATION_DEG: f32 = tables::ELEVATION_DEG[0];
 /// leaves the locus).
 pub const MAX_DUV: f32 = 0.05;
 
+/// A site's clear atmosphere: what the daylight tables take besides the sun.
+///
+/// ```
+/// use sky_core::daylight::{ClearAtmosphere, Daylight};
+/// use sky_core::Sun;
+///
+/// let sun = Sun::new(40f32.to_radians(), 0.0)?;
+/// // Alamosa, Colorado (2,317 m) in January: a clean, thin atmosphere.
+/// let site = ClearAtmosphere { aerosol_optical_depth: 0.06, elevation_m: 2317.0, ozone_du: 310.0 };
+/// let high = Daylight::with_atmosphere(sun, &site)?;
+/// let sea = Daylight::with_atmosphere(sun, &ClearAtmosphere { elevation_m: 0.0, ..site })?;
+/// assert!(high.direct().y > sea.direct().y && high.diffuse().y < sea.diffuse().y);
+/// # Ok::<(), sky_core::SkyError>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClearAtmosphere {
+    /// Aerosol optical depth at 550 nm ([`MIN_AOD`] to [`MAX_AOD`]).
+    pub aerosol_optical_depth: f32,
+    /// The site's elevation above sea level, m ([`ELEVATION_RANGE_M`]): its surface pressure
+    /// ([`Self::pressure_ratio`]) scales the air's share of the light.
+    pub elevation_m: f32,
+    /// Total ozone column, Dobson units ([`OZONE_RANGE_DU`]).
+    pub ozone_du: f32,
+}
+
+impl Default for ClearAtmosphere {
+    /// The default atmosphere: [`DEFAULT_AOD`] at sea level, [`OZONE_DU`].
+    fn default() -> Self {
+        Self {
+            aerosol_optical_depth: DEFAULT_AOD,
+            elevation_m: 0.0,
+            ozone_du: OZONE_DU,
+        }
+    }
+}
+
+impl ClearAtmosphere {
+    /// The surface pressure over sea level's, P / P₀, at [`Self::elevation_m`]: the US
+    /// Standard Atmosphere 1976's troposphere, (T / T₀)^(g₀ M / R L) with T = T₀ − L H,
+    /// T₀ = 288.15 K, L = 6.5 K/km, exponent 5.25588, H the geopotential height
+    /// r₀ z / (r₀ + z), r₀ = 6,356.766 km.
+    #[must_use]
+    pub fn pressure_ratio(&self) -> f32 {
+        let z = self.elevation_m;
+        let h = 6_356_766.0 * z / (6_356_766.0 + z);
+        math::exp_libm(5.255_88 * math::ln(1.0 - 6.5e-3 / 288.15 * h))
+    }
+
+    /// Checks every parameter against its range (NaN is out of range).
+    ///
+    /// # Errors
+    /// [`SkyError::OutOfRange`] naming the first parameter out of its range.
+    pub fn validate(&self) -> Result<(), SkyError> {
+        let check = |parameter, value: f32, (min, max): (f32, f32)| {
+            if (min..=max).contains(&value) {
+                Ok(())
+            } else {
+                Err(SkyError::OutOfRange {
+                    parameter,
+                    value,
+                    min,
+                    max,
+                })
+            }
+        };
+        check(
+            "aerosol optical depth",
+            self.aerosol_optical_depth,
+            (MIN_AOD, MAX_AOD),
+        )?;
+        check("site elevation [m]", self.elevation_m, ELEVATION_RANGE_M)?;
+        check("ozone column [DU]", self.ozone_du, OZONE_RANGE_DU)
+    }
+}
+
 /// The clear-sky daylight for one sun position and atmosphere (module docs). All illuminances
 /// are CIE 1931 X, Y, Z in lux (Y is the illuminance), melanopic EDI in lux (CIE S 026:2018,
 /// D65-equivalent).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Daylight {
     sun: Sun,
-    aod: f32,
+    atmosphere: ClearAtmosphere,
     /// sin h, clamped at 0.
     sin_elevation: f32,
     diffuse: [f32; 4],
@@ -90,34 +177,40 @@ impl Daylight {
     /// # Errors
     /// [`SkyError::OutOfRange`] for `aod` outside [[`MIN_AOD`], [`MAX_AOD`]] (NaN included).
     pub fn new(sun: Sun, aod: f32) -> Result<Self, SkyError> {
-        if !(MIN_AOD..=MAX_AOD).contains(&aod) {
-            return Err(SkyError::OutOfRange {
-                parameter: "aerosol optical depth",
-                value: aod,
-                min: MIN_AOD,
-                max: MAX_AOD,
-            });
-        }
-        let elevation = core::f32::consts::FRAC_PI_2 - sun.zenith();
-        Ok(Self {
+        Self::with_atmosphere(
             sun,
-            aod,
-            sin_elevation: math::at_least(math::cos(sun.zenith()), 0.0),
-            diffuse: diffuse(elevation.to_degrees(), aod),
-            direct_normal: direct_normal(elevation, aod),
-        })
+            &ClearAtmosphere {
+                aerosol_optical_depth: aod,
+                ..ClearAtmosphere::default()
+            },
+        )
     }
 
-    /// The daylight for `sun` under the default atmosphere ([`DEFAULT_AOD`]).
+    /// The daylight for `sun` (any zenith angle in [0, π]) under a site's clear `atmosphere`.
+    ///
+    /// # Errors
+    /// [`SkyError::OutOfRange`] for a parameter of `atmosphere` outside its range
+    /// ([`ClearAtmosphere::validate`]).
+    pub fn with_atmosphere(sun: Sun, atmosphere: &ClearAtmosphere) -> Result<Self, SkyError> {
+        atmosphere.validate()?;
+        Ok(Self::of(sun, *atmosphere))
+    }
+
+    /// The daylight for `sun` under the default atmosphere ([`DEFAULT_AOD`] at sea level).
     #[must_use]
     pub fn clear(sun: Sun) -> Self {
+        Self::of(sun, ClearAtmosphere::default())
+    }
+
+    /// The daylight of a validated atmosphere.
+    fn of(sun: Sun, atmosphere: ClearAtmosphere) -> Self {
         let elevation = core::f32::consts::FRAC_PI_2 - sun.zenith();
         Self {
             sun,
-            aod: DEFAULT_AOD,
+            atmosphere,
             sin_elevation: math::at_least(math::cos(sun.zenith()), 0.0),
-            diffuse: diffuse(elevation.to_degrees(), DEFAULT_AOD),
-            direct_normal: direct_normal(elevation, DEFAULT_AOD),
+            diffuse: diffuse(elevation.to_degrees(), &atmosphere),
+            direct_normal: direct_normal(elevation, &atmosphere),
         }
     }
 
@@ -130,7 +223,13 @@ impl Daylight {
     /// The aerosol optical depth at 550 nm.
     #[must_use]
     pub fn aerosol_optical_depth(&self) -> f32 {
-        self.aod
+        self.atmosphere.aerosol_optical_depth
+    }
+
+    /// The clear atmosphere as given.
+    #[must_use]
+    pub fn atmosphere(&self) -> ClearAtmosphere {
+        self.atmosphere
     }
 
     /// The diffuse (sky) horizontal illuminance, X, Y, Z in lux.
@@ -248,11 +347,16 @@ fn bracket(nodes: &[f32], v: f32) -> (usize, f32) {
     (i, math::at_most(math::at_least(w, 0.0), 1.0))
 }
 
-/// The diffuse X, Y, Z and melanopic EDI at sun elevation `h_deg` and optical depth `aod`:
-/// the logarithms linear in elevation and quadratic in ln τ through three neighbouring optical
+/// The diffuse X, Y, Z and melanopic EDI at sun elevation `h_deg` under `atmosphere`: the
+/// logarithms linear in elevation and quadratic in ln τ through three neighbouring optical
 /// depths (the interval's ends and the node before it, or after it for the first interval: the
-/// interpolant passes through every node, so it is continuous in τ).
-fn diffuse(h_deg: f32, aod: f32) -> [f32; 4] {
+/// interpolant passes through every node, so it is continuous in τ), each node's ln E plus
+/// (P / P₀ − 1) times its pressure sensitivity, plus (O₃ − 300) / 100 times the ozone
+/// sensitivity (linear in elevation).
+fn diffuse(h_deg: f32, atmosphere: &ClearAtmosphere) -> [f32; 4] {
+    let aod = atmosphere.aerosol_optical_depth;
+    let dp = atmosphere.pressure_ratio() - 1.0;
+    let d_ozone = (atmosphere.ozone_du - OZONE_DU) / 100.0;
     let (ie, we) = bracket(&tables::ELEVATION_DEG, h_deg);
     let ln_aod = tables::AOD.map(math::ln);
     let (ia, _) = bracket(&ln_aod, math::ln(aod));
@@ -272,12 +376,19 @@ fn diffuse(h_deg: f32, aod: f32) -> [f32; 4] {
         w
     };
     let weights = [weight(first), weight(first + 1), weight(first + 2)];
+    let along = |t: &[[i16; 4]], k: usize| -> f32 {
+        let (a, b) = (f32::from(t[ie][k]), f32::from(t[ie + 1][k]));
+        a + we * (b - a)
+    };
     core::array::from_fn(|k| {
         let mut ln_e = 0.0;
         for (n, w) in weights.iter().enumerate() {
-            let t = &tables::LN_DIFFUSE[first + n];
-            ln_e += w * (t[ie][k] + we * (t[ie + 1][k] - t[ie][k]));
+            ln_e += w
+                * (along(&tables::LN_DIFFUSE[first + n], k) / tables::LN_SCALE
+                    + dp * along(&tables::PRESSURE_SENSITIVITY[first + n], k)
+                        / tables::SENSITIVITY_SCALE);
         }
+        ln_e += d_ozone * along(&tables::OZONE_SENSITIVITY, k) / tables::SENSITIVITY_SCALE;
         math::exp_libm(ln_e)
     })
 }
@@ -295,9 +406,11 @@ fn disc_fraction(elevation: f32) -> f32 {
     }
 }
 
-/// The direct normal X, Y, Z and melanopic EDI at sun elevation `elevation` radians and optical
-/// depth `aod` (module docs).
-fn direct_normal(elevation: f32, aod: f32) -> [f32; 4] {
+/// The direct normal X, Y, Z and melanopic EDI at sun elevation `elevation` radians under
+/// `atmosphere` (module docs).
+fn direct_normal(elevation: f32, atmosphere: &ClearAtmosphere) -> [f32; 4] {
+    let aod = atmosphere.aerosol_optical_depth;
+    let pressure = atmosphere.pressure_ratio();
     let v = disc_fraction(elevation);
     if v <= 0.0 {
         return [0.0; 4];
@@ -315,9 +428,9 @@ fn direct_normal(elevation: f32, aod: f32) -> [f32; 4] {
     });
     let mut out = [0.0; 4];
     for l in 0..tables::SUN_CHANNELS.len() {
-        let tau = tables::RAYLEIGH_DEPTH[l] * m[0]
+        let tau = pressure * tables::RAYLEIGH_DEPTH[l] * m[0]
             + aod * tables::AEROSOL_DEPTH[l] * m[1]
-            + OZONE_DU * tables::OZONE_DEPTH[l] * m[2];
+            + atmosphere.ozone_du * tables::OZONE_DEPTH[l] * m[2];
         let t = math::exp_libm(-tau) * v;
         for (o, s) in out.iter_mut().zip(tables::SUN_CHANNELS[l]) {
             *o += s * t;
@@ -335,6 +448,53 @@ mod tests {
         assert!((disc_fraction(0.0) - 0.5).abs() < 1e-6);
         assert_eq!(disc_fraction(0.01), 1.0);
         assert_eq!(disc_fraction(-0.01), 0.0);
+    }
+
+    /// The US Standard Atmosphere 1976's Table I: 845.59 hPa at 1,500 m and 701.21 hPa at
+    /// 3,000 m (geometric), over 1013.25 hPa.
+    #[test]
+    fn pressure_ratio_is_the_standard_atmosphere() {
+        for (z, p) in [(1500.0, 845.59), (3000.0, 701.21), (0.0, 1013.25)] {
+            let a = ClearAtmosphere {
+                elevation_m: z,
+                ..ClearAtmosphere::default()
+            };
+            let r = a.pressure_ratio();
+            assert!((r - p / 1013.25).abs() < 2e-4, "{z} m: {r}");
+        }
+    }
+
+    #[test]
+    fn atmosphere_out_of_range_is_named() {
+        let sun = Sun::new(0.5, 0.0).expect("sun");
+        for (a, name) in [
+            (
+                ClearAtmosphere {
+                    elevation_m: 5001.0,
+                    ..ClearAtmosphere::default()
+                },
+                "site elevation [m]",
+            ),
+            (
+                ClearAtmosphere {
+                    ozone_du: f32::NAN,
+                    ..ClearAtmosphere::default()
+                },
+                "ozone column [DU]",
+            ),
+            (
+                ClearAtmosphere {
+                    aerosol_optical_depth: 0.9,
+                    ..ClearAtmosphere::default()
+                },
+                "aerosol optical depth",
+            ),
+        ] {
+            match Daylight::with_atmosphere(sun, &a) {
+                Err(SkyError::OutOfRange { parameter, .. }) => assert_eq!(parameter, name),
+                other => panic!("{other:?}"),
+            }
+        }
     }
 
     #[test]

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 
-use super::AtmosphereArgs;
+use super::{AtmosphereArgs, ClimateArgs};
 use crate::args::{ParamError, radians};
 use crate::output_path;
 use crate::physical::atmosphere::Preset;
@@ -38,6 +38,8 @@ pub struct DaylightArgs {
     date: Option<(i32, u32, u32)>,
     #[command(flatten)]
     atmosphere: AtmosphereArgs,
+    #[command(flatten)]
+    site: ClimateArgs,
     /// Also draw global, diffuse and direct illuminance against elevation (log scale) beside
     /// the USNO clear-sky record and Preetham's sky-only curve (turbidity 3), and the global
     /// curve of the other preset, as PNG (physical only).
@@ -52,7 +54,8 @@ pub struct DaylightArgs {
 type Row = (f64, f64, f64, Colorimetry);
 
 fn physical_rows(args: &DaylightArgs, list: &[f64]) -> Result<Vec<Row>, ParamError> {
-    rows_of(&args.atmosphere.options(), args.turbidity, args, list)
+    let options = args.site.apply(args.atmosphere.options(), args.date)?;
+    rows_of(&options, args.turbidity, args, list)
 }
 
 fn rows_of(
@@ -144,7 +147,7 @@ fn plots(args: &DaylightArgs, rows: &[Row]) -> Result<()> {
     if let Some(path) = &args.plot_illuminance {
         // The global curve of each preset whose atmosphere is not the one drawn, the other
         // flags as given.
-        let options = args.atmosphere.options();
+        let options = args.site.apply(args.atmosphere.options(), args.date)?;
         let drawn = options.atmosphere(args.turbidity)?;
         let mut presets = Vec::new();
         for preset in [Preset::Record, Preset::Clean] {
@@ -382,6 +385,12 @@ pub fn run(args: &DaylightArgs, output: &mut dyn Write) -> Result<()> {
     let rows = match args.model {
         ModelKind::Physical => physical_rows(args, &list)?,
         ModelKind::Preetham => {
+            if args.site.given() {
+                return Err(ParamError(
+                    "--lat/--lon/--elevation do not apply to --model preetham (only to --model physical)".into(),
+                )
+                .into());
+            }
             if let Some(flag) = args.atmosphere.options().first_flag() {
                 return Err(ParamError(format!(
                     "{flag} does not apply to --model preetham (only to --model physical)"

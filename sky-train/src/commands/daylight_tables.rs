@@ -16,13 +16,22 @@ use crate::physical::cache;
 /// `daylight-tables`' arguments.
 #[derive(Args)]
 pub struct DaylightTablesArgs {
-    /// Sample the physical atmosphere into --data first (one precomputed atmosphere per
-    /// optical depth 0.05, 0.1, 0.2, 0.4, 0.8; about a minute each on first use, then cached).
+    /// Sample the physical atmosphere into --data and --site-data first (one precomputed
+    /// atmosphere per optical depth 0.05, 0.1, 0.2, 0.4, 0.8 at sea level and at 3,000 m, one
+    /// at 400 DU of ozone, and four held-out atmospheres for the tests; about a minute each on
+    /// first use, then cached).
     #[arg(long)]
     sample: bool,
+    /// Sample only the site's axes into --site-data (with --sample: --data is left as it is).
+    #[arg(long, requires = "sample")]
+    site_only: bool,
     /// The sampled reference (CSV): written by --sample, read to make the tables.
     #[arg(long, value_name = "FILE.csv", default_value = tables::DATA_PATH)]
     data: PathBuf,
+    /// The sampled reference at other pressures and ozone columns (CSV): written by --sample,
+    /// read to make the pressure and ozone sensitivities.
+    #[arg(long, value_name = "FILE.csv", default_value = tables::SITE_DATA_PATH)]
+    site_data: PathBuf,
     /// The Rust file to write (sky-core's `daylight/tables.rs`).
     #[arg(long, value_name = "FILE.rs", default_value = tables::TABLES_PATH)]
     out: PathBuf,
@@ -40,18 +49,31 @@ pub fn run(args: &DaylightTablesArgs, output: &mut dyn Write) -> Result<()> {
     check_output("--data", &args.data, "csv")?;
     check_output("--out", &args.out, "rs")?;
     if args.sample {
+        // Both outputs are checked before the minutes of sampling.
+        check_output("--site-data", &args.site_data, "csv")?;
         let dir = cache::CacheDir::new(args.cache_dir.as_deref());
-        let samples = tables::sample(&dir, true)?;
-        tables::write_samples(&args.data, &samples)?;
+        if !args.site_only {
+            let samples = tables::sample(&dir, true)?;
+            tables::write_samples(&args.data, &samples)?;
+            writeln!(
+                output,
+                "wrote {} ({} samples)",
+                args.data.display(),
+                samples.len()
+            )?;
+        }
+        let site = tables::sample_site(&dir, true)?;
+        tables::write_site_samples(&args.site_data, &site)?;
         writeln!(
             output,
             "wrote {} ({} samples)",
-            args.data.display(),
-            samples.len()
+            args.site_data.display(),
+            site.len()
         )?;
     }
     let samples = tables::read_samples(&args.data)?;
-    let source = tables::rust_source(&samples, &tables::beam());
+    let site = tables::read_site_samples(&args.site_data)?;
+    let source = tables::rust_source(&samples, &site, &tables::beam());
     write_atomically(&args.out, |f| Ok(f.write_all(source.as_bytes())?))?;
     super::report_written(output, &args.out);
     Ok(())

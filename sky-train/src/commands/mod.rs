@@ -20,6 +20,7 @@ pub mod render;
 pub mod sample;
 pub mod schedule;
 pub mod showcase;
+pub mod site;
 pub mod size_study;
 pub mod spectrum;
 pub mod train;
@@ -74,7 +75,8 @@ pub struct SkyArgs {
     /// Longitude in degrees, east positive (-180 to 180), with --time.
     #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = longitude)]
     lon: Option<f64>,
-    /// Elevation of the place in metres (-500 to 10000; default 0), with --time.
+    /// Elevation of the place in metres (-500 to 10000; default 0), with --time; for --model
+    /// physical also the ground's altitude, the air above it (-500 to 6000).
     #[arg(long, value_name = "M", allow_negative_numbers = true, value_parser = elevation)]
     elevation: Option<f64>,
     /// CIE standard general sky type, 1 (overcast) to 15 (cloudless, turbid) (cie only).
@@ -166,8 +168,59 @@ impl AtmosphereArgs {
             aerosol_g: self.aerosol_g,
             ozone_du: self.ozone_du,
             albedo: self.albedo,
+            site_elevation_m: None,
+            base: None,
             cache_dir: self.cache_dir.clone(),
         }
+    }
+}
+
+/// The site whose month's clear atmosphere (`sky-train site`) `daylight` and `spectrum` use
+/// unless `--atmosphere` or a constituent's flag says otherwise.
+#[derive(Args, Clone, Default)]
+pub struct ClimateArgs {
+    /// Latitude of the site, degrees north (-90 to 90; physical only, with --lon and --date):
+    /// the atmosphere of the site's month (`sky-train site`) instead of the record preset.
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = latitude, requires = "lon")]
+    lat: Option<f64>,
+    /// Longitude of the site, degrees east (-180 to 180; with --lat).
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = longitude, requires = "lat")]
+    lon: Option<f64>,
+    /// Elevation of the site in metres (-500 to 6000; physical only): the ground's altitude,
+    /// the air above it the US Standard Atmosphere's (default: 0, or with --lat/--lon the
+    /// 1-degree grid's).
+    #[arg(long, value_name = "M", allow_negative_numbers = true)]
+    elevation: Option<f64>,
+}
+
+impl ClimateArgs {
+    /// `options` with this site's month as the atmosphere they change (the month of `date`),
+    /// and the elevation given.
+    ///
+    /// # Errors
+    /// A [`ParamError`]: --lat/--lon without --date, a value out of its range.
+    pub fn apply(
+        &self,
+        mut options: sources::PhysicalOptions,
+        date: Option<(i32, u32, u32)>,
+    ) -> Result<sources::PhysicalOptions, ParamError> {
+        options.site_elevation_m = self.elevation;
+        if let (Some(lat), Some(lon)) = (self.lat, self.lon) {
+            let Some((_, month, _)) = date else {
+                return Err(ParamError(
+                    "--lat/--lon take the site's month from --date: give --date".into(),
+                ));
+            };
+            options.base =
+                Some(crate::site::site_month(lat, lon, self.elevation, month)?.atmosphere());
+        }
+        Ok(options)
+    }
+
+    /// Whether any of the site's flags was given (for refusing them on other models).
+    #[must_use]
+    pub fn given(&self) -> bool {
+        self.lat.is_some() || self.lon.is_some() || self.elevation.is_some()
     }
 }
 
@@ -230,7 +283,10 @@ impl SkyArgs {
             dhi: self.dhi,
             global_lux: self.global_lux,
             day_of_year,
-            physical: self.atmosphere.options(),
+            physical: sources::PhysicalOptions {
+                site_elevation_m: self.elevation,
+                ..self.atmosphere.options()
+            },
         })
     }
 

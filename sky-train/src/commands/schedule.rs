@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Args;
 
-use crate::args::{date, elevation, in_range, latitude, longitude};
+use crate::args::{date, in_range, latitude, longitude};
 use sky_core::controller::{Decomposition, Light, Settings};
 use sky_core::solar::SunAlgorithm;
 
@@ -52,13 +52,32 @@ pub struct ScheduleArgs {
     /// Minutes between rows, from 00:00 UTC (1 to 1440; not with --measurements).
     #[arg(long, value_name = "MIN", default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=1440), conflicts_with = "measurements")]
     pub step: u32,
-    /// Elevation of the site in metres above sea level (-500 to 10000).
-    #[arg(long, value_name = "M", default_value_t = 0.0, allow_negative_numbers = true, value_parser = elevation)]
-    pub elevation: f64,
+    /// Elevation of the site in metres above sea level (-500 to 5000): the sun's parallax and
+    /// the clear sky's surface pressure (default: the 1-degree grid's mean elevation, a coarse
+    /// stand-in that can be hundreds of metres off in mountains: give it).
+    #[arg(long, value_name = "M", allow_negative_numbers = true, value_parser = elevation)]
+    pub elevation: Option<f64>,
+    /// The clear atmosphere: by default the site's month (`sky-train site`: aerosol optical
+    /// depth from the SoDa Linke turbidity climatology, ozone by Van Heuklon 1979, and the
+    /// precipitable water at which Perez's efficacy turns a measured W/m2 into lux; each row
+    /// by its month), else a named preset: record (the USNO clear-sky record's turbid sky, AOD
+    /// 0.38, 300 DU, for validation against it) or clean (OPAC continental average, AOD
+    /// 0.151, 300 DU). --aod, --turbidity, --ozone-du and --water-vapour replace its values.
+    #[arg(long, value_enum, value_name = "PRESET")]
+    pub atmosphere: Option<crate::physical::atmosphere::Preset>,
     /// Aerosol optical depth at 550 nm of the clear atmosphere (0.05 to 0.8; default the
-    /// clear-sky record's, sky-core's `daylight::DEFAULT_AOD`).
+    /// site's month's, clamped to that range, or the preset's).
     #[arg(long, value_name = "TAU", value_parser = aod, conflicts_with = "turbidity")]
     pub aod: Option<f32>,
+    /// Total ozone column of the clear atmosphere, Dobson units (200 to 500; default the site's
+    /// month's, or 300 with a preset). It matters in twilight: 7-14 % of the light per 50 DU.
+    #[arg(long, value_name = "DU", value_parser = ozone)]
+    pub ozone_du: Option<f32>,
+    /// Precipitable water in cm (0 to 10) at which Perez's efficacy turns a measured W/m2 into
+    /// lux (default the site's month's, or 2 with a preset; the clear sky's light itself does
+    /// not depend on it, docs/daylight.md).
+    #[arg(long, value_name = "CM", value_parser = water)]
+    pub water_vapour: Option<f32>,
     /// Preetham's turbidity instead of --aod (2 to 8.5), mapped to the aerosol optical depth as
     /// the physical atmosphere maps it (`Atmosphere::from_turbidity`).
     #[arg(long, value_name = "T", value_parser = turbidity)]
@@ -139,6 +158,55 @@ fn turbidity(s: &str) -> Result<f32, String> {
     Ok(atm.aod_550 as f32)
 }
 
+/// Precipitable water, cm (sky-core's efficacy takes 0 to 10).
+#[allow(clippy::cast_possible_truncation)]
+fn water(s: &str) -> Result<f32, String> {
+    in_range(s, 0.0, 10.0, "a precipitable water in cm").map(|v| v as f32)
+}
+
+/// A site's elevation the clear sky takes (sky-core's `daylight::ELEVATION_RANGE_M`).
+fn elevation(s: &str) -> Result<f64, String> {
+    in_range(s, -500.0, 5000.0, "an elevation in metres")
+}
+
+#[allow(clippy::cast_possible_truncation)]
+fn ozone(s: &str) -> Result<f32, String> {
+    // sky-core's daylight::OZONE_RANGE_DU.
+    in_range(s, 200.0, 500.0, "an ozone column in Dobson units").map(|v| v as f32)
+}
+
+/// The elevation a schedule uses: `--elevation`, else the site climatology's 1-degree grid's.
+fn site_elevation(args: &ScheduleArgs) -> f64 {
+    args.elevation
+        .unwrap_or_else(|| crate::site::grid_elevation_m(args.lat, args.lon).clamp(-500.0, 5000.0))
+}
+
+/// Each month's (aerosol optical depth, ozone column, precipitable water) of the site's clear
+/// atmosphere, the optical depth clamped to sky-core's tables' range; `--aod`/`--turbidity`,
+/// `--ozone-du` and `--water-vapour` replace theirs. `None` with a preset.
+///
+/// # Errors
+/// A [`crate::args::ParamError`] for a site the climatology refuses.
+#[allow(clippy::cast_possible_truncation)]
+fn monthly(args: &ScheduleArgs, elevation: f64) -> Result<Option<[(f32, f32, f32); 12]>> {
+    if args.atmosphere.is_some() {
+        return Ok(None);
+    }
+    let mut months = [(0.0, 0.0, 0.0); 12];
+    for (m, out) in (1..=12).zip(months.iter_mut()) {
+        let s = crate::site::site_month(args.lat, args.lon, Some(elevation), m)?;
+        let aod =
+            (s.aod_550 as f32).clamp(sky_core::daylight::MIN_AOD, sky_core::daylight::MAX_AOD);
+        let (lo, hi) = sky_core::daylight::OZONE_RANGE_DU;
+        *out = (
+            args.aod.or(args.turbidity).unwrap_or(aod),
+            args.ozone_du.unwrap_or((s.ozone_du as f32).clamp(lo, hi)),
+            args.water_vapour.unwrap_or(s.water_vapour_cm as f32),
+        );
+    }
+    Ok(Some(months))
+}
+
 #[allow(clippy::cast_possible_truncation)]
 fn full_scale_lux(s: &str) -> Result<f32, String> {
     in_range(s, 1.0, 200_000.0, "an illuminance in lux").map(|v| v as f32)
@@ -150,18 +218,23 @@ fn full_scale_lux(s: &str) -> Result<f32, String> {
 /// # Errors
 /// Bad parameters as a [`crate::args::ParamError`], a failed write.
 pub fn run(args: &ScheduleArgs, output: &mut dyn Write) -> Result<()> {
+    let elevation = site_elevation(args);
+    #[allow(clippy::cast_possible_truncation)]
+    let preset = args.atmosphere.unwrap_or_default().atmosphere().aod_550 as f32;
     let config = ScheduleConfig {
         latitude: args.lat,
         longitude: args.lon,
-        elevation: args.elevation,
+        elevation,
+        monthly: monthly(args, elevation)?,
         // Unused with --measurements (their rows carry the dates).
         date: args.date.unwrap_or((2000, 1, 1)),
         step_minutes: args.step,
         settings: Settings {
-            aerosol_optical_depth: args
-                .aod
-                .or(args.turbidity)
-                .unwrap_or(sky_core::daylight::DEFAULT_AOD),
+            aerosol_optical_depth: args.aod.or(args.turbidity).unwrap_or(preset),
+            ozone_du: args.ozone_du.unwrap_or(sky_core::daylight::OZONE_DU),
+            precipitable_water: args
+                .water_vapour
+                .unwrap_or(sky_core::efficacy::DEFAULT_PRECIPITABLE_WATER),
             light: if args.sky_only {
                 Light::Sky
             } else {

@@ -6,7 +6,7 @@ use std::io::{BufWriter, Write};
 use anyhow::Result;
 use clap::Args;
 
-use super::AtmosphereArgs;
+use super::{AtmosphereArgs, ClimateArgs};
 use crate::args::ParamError;
 use crate::physical::constituents::wavelength_nm;
 use crate::physical::solar;
@@ -29,6 +29,8 @@ pub struct SpectrumArgs {
     date: Option<(i32, u32, u32)>,
     #[command(flatten)]
     atmosphere: AtmosphereArgs,
+    #[command(flatten)]
+    site: ClimateArgs,
 }
 
 /// The CSV header of `spectrum`.
@@ -55,7 +57,10 @@ pub fn run(args: &SpectrumArgs, output: &mut dyn Write) -> Result<()> {
         ))
         .into());
     }
-    let atm = args.atmosphere.options().load(args.turbidity)?;
+    let atm = args
+        .site
+        .apply(args.atmosphere.options(), args.date)?
+        .load(args.turbidity)?;
     let scale = args.date.map_or(1.0, |(y, m, d)| {
         solar::eccentricity_correction(solar::day_of_year(y, m, d))
     });

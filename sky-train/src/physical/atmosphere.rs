@@ -20,7 +20,12 @@ use super::constituents::{
 ///   boundary layer); the optical depth at 550 nm is the preset's;
 /// - ozone column 300 DU (about the global mean total ozone; Bruneton 2017's default);
 /// - Lambertian ground albedo 0.2 (grass and soil, broadband);
-/// - air: the US Standard Atmosphere 1976, 360 ppm CO₂ (fixed, [`constituents`]).
+/// - air: the US Standard Atmosphere 1976, 360 ppm CO₂ (fixed, [`constituents`]), above the
+///   ground at the site's elevation (0 m, sea level, unless given): a site at altitude z has
+///   the standard's air and ozone above z, so its surface pressure is the standard's P(z) and
+///   the Rayleigh optical depth and the air's share of every path scale with it (the
+///   aerosol's profile starts at the ground; the planet's radius is unchanged, 0.04 % at
+///   2.5 km).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Atmosphere {
     /// Aerosol optical depth at 550 nm (0 to 5).
@@ -37,6 +42,9 @@ pub struct Atmosphere {
     pub ozone_du: f64,
     /// Lambertian ground albedo (0 to 1).
     pub ground_albedo: f64,
+    /// The ground's elevation above sea level, m (−500 to 6,000): the air and ozone above it
+    /// are the US Standard Atmosphere 1976's above that altitude ([`Self::air_density`]).
+    pub site_elevation_m: f64,
 }
 
 impl Default for Atmosphere {
@@ -84,6 +92,7 @@ impl Preset {
             aerosol_scale_height_m: 1200.0,
             ozone_du: 300.0,
             ground_albedo: 0.2,
+            site_elevation_m: 0.0,
         }
     }
 }
@@ -111,12 +120,16 @@ impl fmt::Display for AtmosphereError {
 
 impl std::error::Error for AtmosphereError {}
 
+/// The site elevations an atmosphere takes, m: from below the Dead Sea's shore to the highest
+/// inhabited sites; the US Standard Atmosphere's first layer holds throughout.
+pub const SITE_ELEVATION_RANGE_M: (f64, f64) = (-500.0, 6000.0);
+
 /// The turbidities [`Atmosphere::from_turbidity`] accepts (β ≥ 0 needs T ≥ 0.9952).
 pub const TURBIDITY_RANGE: (f64, f64) = (1.0, 10.0);
 
 impl Atmosphere {
     /// The valid range of each parameter, with its flag.
-    pub const RANGES: [(&'static str, (f64, f64)); 7] = [
+    pub const RANGES: [(&'static str, (f64, f64)); 8] = [
         ("--aod", (0.0, 5.0)),
         ("--angstrom", (0.0, 3.0)),
         ("--aerosol-ssa", (0.0, 1.0)),
@@ -124,9 +137,10 @@ impl Atmosphere {
         ("--aerosol-scale-height", (100.0, 20_000.0)),
         ("--ozone-du", (0.0, 1000.0)),
         ("--albedo", (0.0, 1.0)),
+        ("--elevation", SITE_ELEVATION_RANGE_M),
     ];
 
-    fn values(&self) -> [f64; 7] {
+    fn values(&self) -> [f64; 8] {
         [
             self.aod_550,
             self.angstrom,
@@ -135,6 +149,7 @@ impl Atmosphere {
             self.aerosol_scale_height_m,
             self.ozone_du,
             self.ground_albedo,
+            self.site_elevation_m,
         ]
     }
 
@@ -192,6 +207,30 @@ impl Atmosphere {
     #[must_use]
     pub fn ozone_peak_density(&self) -> f64 {
         self.ozone_du * DOBSON_UNIT / constituents::OZONE_SHAPE_INTEGRAL_M
+    }
+
+    /// Air molecule number density at `z_m` above the ground, m⁻³: the US Standard
+    /// Atmosphere's at `z_m` + [`Self::site_elevation_m`].
+    #[must_use]
+    #[inline]
+    pub fn air_density(&self, z_m: f64) -> f64 {
+        constituents::air_number_density(z_m + self.site_elevation_m)
+    }
+
+    /// Ozone number density at `z_m` above the ground, m⁻³: the column's layer
+    /// ([`constituents::ozone_shape`], 10-40 km above sea level) at `z_m` +
+    /// [`Self::site_elevation_m`].
+    #[must_use]
+    #[inline]
+    pub fn ozone_density(&self, z_m: f64) -> f64 {
+        self.ozone_peak_density() * constituents::ozone_shape(z_m + self.site_elevation_m)
+    }
+
+    /// The surface pressure at the site, Pa: the US Standard Atmosphere 1976's at
+    /// [`Self::site_elevation_m`] (101,325 Pa at sea level).
+    #[must_use]
+    pub fn surface_pressure_pa(&self) -> f64 {
+        constituents::us76(self.site_elevation_m).1
     }
 
     /// The per-wavelength coefficients of this atmosphere's constituents.

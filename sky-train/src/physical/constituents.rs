@@ -129,18 +129,19 @@ const US76_R0_KM: f64 = 6356.766;
 const US76_TOP_KM: f64 = 84.852;
 
 /// Temperature (K) and pressure (Pa) of the US Standard Atmosphere 1976 at geometric altitude
-/// `z_m` (0 to 100 km). Below 86 km (84.852 km geopotential) the standard's seven layers; above,
-/// the temperature there (186.87 K) continued isothermally, which reproduces the standard's
-/// 100 km density within 3 %. Altitudes below 0 are treated as 0.
+/// `z_m` (−1 to 106 km). Below 86 km (84.852 km geopotential) the standard's seven layers, the
+/// first continued below sea level (the standard's own convention down to −5 km); above, the
+/// temperature there (186.87 K) continued isothermally, which reproduces the standard's 100 km
+/// density within 3 %. Altitudes below −1 km are treated as −1 km.
 #[must_use]
 pub fn us76(z_m: f64) -> (f64, f64) {
-    let z = (z_m * 1e-3).max(0.0);
+    let z = (z_m * 1e-3).max(-1.0);
     let h = US76_R0_KM * z / (US76_R0_KM + z); // geopotential km
     let (mut t, mut p) = (288.15, 101_325.0);
     for (i, &(base, lapse)) in US76_LAYERS.iter().enumerate() {
         let top = US76_LAYERS.get(i + 1).map_or(US76_TOP_KM, |l| l.0);
         let dh = h.min(top) - base;
-        if dh <= 0.0 {
+        if dh <= 0.0 && i > 0 {
             break;
         }
         if lapse == 0.0 {

@@ -90,6 +90,7 @@ pub struct MonteCarlo {
     ozone: f64,
     ozone_peak: f64,
     scale_height: f64,
+    site_elevation_m: f64,
     phase_r: (f64, f64),
     g: f64,
     albedo: f64,
@@ -114,7 +115,7 @@ impl MonteCarlo {
         let c = atmosphere.coefficients();
         let l = bin.min(constituents::N_WAVELENGTHS - 1);
         let ozone_peak = atmosphere.ozone_peak_density();
-        let majorant = c.rayleigh[l] * air_number_density(0.0)
+        let majorant = c.rayleigh[l] * atmosphere.air_density(0.0)
             + c.aerosol_extinction[l]
             + c.ozone[l] * ozone_peak;
         Self {
@@ -124,6 +125,7 @@ impl MonteCarlo {
             ozone: c.ozone[l],
             ozone_peak,
             scale_height: atmosphere.aerosol_scale_height_m,
+            site_elevation_m: atmosphere.site_elevation_m,
             phase_r: c.rayleigh_phase[l],
             g: atmosphere.aerosol_g,
             albedo: atmosphere.ground_albedo,
@@ -144,9 +146,9 @@ impl MonteCarlo {
     /// (Rayleigh scattering, aerosol scattering, extinction) at `p`, m⁻¹.
     fn coefficients(&self, p: V3) -> (f64, f64, f64) {
         let z = dot(p, p).sqrt() - R;
-        let br = self.rayleigh * air_number_density(z);
+        let br = self.rayleigh * air_number_density(z + self.site_elevation_m);
         let a = (-z / self.scale_height).exp();
-        let bo = self.ozone * self.ozone_peak * ozone_shape(z);
+        let bo = self.ozone * self.ozone_peak * ozone_shape(z + self.site_elevation_m);
         (br, self.aerosol_sca * a, br + self.aerosol_ext * a + bo)
     }
 

@@ -125,15 +125,14 @@ impl Medium {
     pub fn new(atmosphere: &Atmosphere) -> Self {
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let n = (TOP_ALTITUDE_M / PROFILE_STEP_M) as usize + 2;
-        let peak = atmosphere.ozone_peak_density();
         let profile = (0..n)
             .map(|k| {
                 #[allow(clippy::cast_precision_loss)]
                 let z = k as f64 * PROFILE_STEP_M;
                 [
-                    constituents::air_number_density(z),
+                    atmosphere.air_density(z),
                     (-z / atmosphere.aerosol_scale_height_m).exp(),
-                    peak * constituents::ozone_shape(z),
+                    atmosphere.ozone_density(z),
                 ]
             })
             .collect();

@@ -30,6 +30,11 @@ pub struct PhysicalOptions {
     pub ozone_du: Option<f64>,
     /// `--albedo`: ground albedo.
     pub albedo: Option<f64>,
+    /// `--elevation`: the site's elevation, m (the ground's altitude: the air above it).
+    pub site_elevation_m: Option<f64>,
+    /// The atmosphere the options change when no `--atmosphere` preset is named: a site's
+    /// month ([`crate::site`]); `None` takes the default preset's.
+    pub base: Option<Atmosphere>,
     /// `--cache-dir`: where precomputed atmospheres are kept (default [`cache::default_dir`]).
     pub cache_dir: Option<PathBuf>,
 }
@@ -59,7 +64,11 @@ impl PhysicalOptions {
     /// A [`ParamError`] naming the flag and its valid range; both `--aod` and `--turbidity`.
     pub fn atmosphere(&self, turbidity: Option<f64>) -> Result<Atmosphere, ParamError> {
         let out_of_range = |e: crate::physical::AtmosphereError| ParamError(e.to_string());
-        let preset = self.preset.unwrap_or_default().atmosphere();
+        let preset = match (self.preset, self.base) {
+            (Some(p), _) => p.atmosphere(),
+            (None, Some(site)) => site,
+            (None, None) => Preset::default().atmosphere(),
+        };
         let base = match (turbidity, self.aod) {
             (Some(_), Some(_)) => {
                 return Err(ParamError(
@@ -79,6 +88,7 @@ impl PhysicalOptions {
             aerosol_g: self.aerosol_g.unwrap_or(base.aerosol_g),
             ozone_du: self.ozone_du.unwrap_or(base.ozone_du),
             ground_albedo: self.albedo.unwrap_or(base.ground_albedo),
+            site_elevation_m: self.site_elevation_m.unwrap_or(base.site_elevation_m),
             ..base
         };
         atm.validate().map_err(out_of_range)?;
@@ -149,7 +159,7 @@ impl SkySource for Physical {
     fn describe(&self) -> String {
         let a = &self.0.atmosphere().atmosphere;
         format!(
-            "physical: sun zenith {:.2} deg, azimuth {:.2} deg, AOD(550) {:.3}, Angstrom {}, SSA {}, g {}, ozone {} DU, albedo {}",
+            "physical: sun zenith {:.2} deg, azimuth {:.2} deg, AOD(550) {:.3}, Angstrom {}, SSA {}, g {}, ozone {} DU, albedo {}, site elevation {} m",
             self.0.sun_zenith_deg(),
             self.0.sun_azimuth_deg(),
             a.aod_550,
@@ -157,7 +167,8 @@ impl SkySource for Physical {
             a.aerosol_ssa,
             a.aerosol_g,
             a.ozone_du,
-            a.ground_albedo
+            a.ground_albedo,
+            a.site_elevation_m
         )
     }
 
