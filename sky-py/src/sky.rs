@@ -384,7 +384,7 @@ impl Sky {
         sun_azimuth: f32,
         zenith_luminance: Option<f32>,
         diffuse_illuminance: Option<f32>,
-        chromaticity: Option<(f32, f32)>,
+        chromaticity: Option<[f32; 2]>,
     ) -> PyResult<Self> {
         let sky_type = whole("CIE sky type", sky_type, 1, 15)?;
         let sun = sun(sun_zenith, sun_azimuth)?;
@@ -399,7 +399,7 @@ impl Sky {
             }
         };
         let mut sky = sky.map_err(|e| value_error("", e))?;
-        if let Some((x, y)) = chromaticity {
+        if let Some([x, y]) = chromaticity {
             sky = sky
                 .with_chromaticity(x, y)
                 .map_err(|e| value_error("chromaticity", e))?;
@@ -424,7 +424,7 @@ impl Sky {
         clearness: f32,
         brightness: f32,
         diffuse_illuminance: f32,
-        chromaticity: Option<(f32, f32)>,
+        chromaticity: Option<[f32; 2]>,
     ) -> PyResult<Self> {
         let sun = sun(sun_zenith, sun_azimuth)?;
         let condition = SkyCondition::new(clearness, brightness).map_err(|e| value_error("", e))?;
@@ -445,7 +445,7 @@ impl Sky {
         ghi: f32,
         dhi: f32,
         day_of_year: i64,
-        chromaticity: Option<(f32, f32)>,
+        chromaticity: Option<[f32; 2]>,
     ) -> PyResult<Self> {
         let day_of_year = whole("day of the year", day_of_year, 1, 366)?;
         let sun = sun(sun_zenith, sun_azimuth)?;
@@ -599,9 +599,9 @@ impl Sky {
 }
 
 impl Sky {
-    fn perez_coloured(sky: PerezSky, sun: Sun, chromaticity: Option<(f32, f32)>) -> PyResult<Self> {
+    fn perez_coloured(sky: PerezSky, sun: Sun, chromaticity: Option<[f32; 2]>) -> PyResult<Self> {
         let sky = match chromaticity {
-            Some((x, y)) => sky
+            Some([x, y]) => sky
                 .with_chromaticity(x, y)
                 .map_err(|e| value_error("chromaticity", e))?,
             None => sky,

@@ -292,4 +292,4 @@ def direction(zenith, azimuth):
     zenith, azimuth = _np.broadcast_arrays(
         _np.asarray(zenith, dtype=_np.float32), _np.asarray(azimuth, dtype=_np.float32)
     )
-    return _skymodels.direction(_np.ascontiguousarray(zenith), _np.ascontiguousarray(azimuth))
+    return _skymodels.direction(zenith, azimuth)

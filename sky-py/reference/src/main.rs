@@ -2,7 +2,8 @@
 //! stdin, computes each with sky-core directly (no Python, no binding), and prints a JSON list
 //! of results in the same order. The tests compare the wheel's values with these, bit for bit.
 //!
-//! Inputs are JSON numbers (exact: serde_json's `float_roundtrip`), times as calendar fields
+//! Inputs are JSON numbers (exact: serde_json's `float_roundtrip`; view directions as the bits of
+//! their f32, so that NaN and infinities pass), times as calendar fields
 //! (the tests derive them with Python's own `datetime`, the binding from microseconds since
 //! 1970); f32 results are printed as their bits (`u32`), f64 results as theirs (`u64`). A case
 //! that sky-core refuses gives `{"error": message}`.
@@ -370,11 +371,13 @@ impl Model {
     }
 }
 
+/// A direction given as the bits of its three f32 (so that NaN and infinities pass JSON).
+#[allow(clippy::cast_possible_truncation)] // u32 bits
 fn dir(v: &Value) -> Result<Vec3, BadCase> {
     let c = |i: usize| {
         v.get(i)
-            .and_then(Value::as_f64)
-            .map(|x| x as f32)
+            .and_then(Value::as_u64)
+            .map(|b| f32::from_bits(b as u32))
             .ok_or_else(|| BadCase(format!("direction {v}")))
     };
     Ok(Vec3::new(c(0)?, c(1)?, c(2)?))
@@ -382,9 +385,9 @@ fn dir(v: &Value) -> Result<Vec3, BadCase> {
 
 fn sky_case(case: &Value) -> Outcome {
     let quantity = text(case, "quantity")?;
-    let dirs = case["dirs"]
+    let dirs = case["dir_bits"]
         .as_array()
-        .ok_or_else(|| BadCase("dirs".to_owned()))?
+        .ok_or_else(|| BadCase("dir_bits".to_owned()))?
         .iter()
         .map(dir)
         .collect::<Result<Vec<_>, _>>()?;
@@ -430,6 +433,71 @@ fn direction_case(case: &Value) -> Outcome {
     Ok(Ok(bits3(d)))
 }
 
+/// The physical atmosphere's cases (`physical_irradiance`, `physical_daylight`,
+/// `physical_radiance`): the atmosphere of the case's parameters (sky-train's defaults for those
+/// missing) at the coarse resolution, no cache; spectra as the bits of their f64.
+#[cfg(feature = "physical")]
+fn physical_case(case: &Value, kind: &str) -> Outcome {
+    use sky_train::physical::{Atmosphere, cache};
+    let d = Atmosphere::default();
+    let get = |k: &str, default: f64| case.get(k).and_then(Value::as_f64).unwrap_or(default);
+    let atmosphere = Atmosphere {
+        aod_550: get("aod", d.aod_550),
+        angstrom: get("angstrom", d.angstrom),
+        aerosol_ssa: get("aerosol_ssa", d.aerosol_ssa),
+        aerosol_g: get("aerosol_g", d.aerosol_g),
+        aerosol_scale_height_m: get("aerosol_scale_height", d.aerosol_scale_height_m),
+        ozone_du: get("ozone_du", d.ozone_du),
+        ground_albedo: get("albedo", d.ground_albedo),
+    };
+    let atm = cache::load_or_build_in(&atmosphere, &cache::small_resolution(), None, false)
+        .map_err(|e| BadCase(format!("atmosphere: {e:#}")))?;
+    let sky = atm
+        .sky(
+            num(case, "sun_zenith")?.to_degrees(),
+            num(case, "sun_azimuth")?.to_degrees(),
+        )
+        .map_err(|e| BadCase(format!("sun: {e:?}")))?;
+    let bits = |s: &[f64]| s.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+    Ok(Ok(match kind {
+        "physical_irradiance" => {
+            let e = sky.irradiance();
+            json!({
+                "global": bits(&e.global),
+                "diffuse": bits(&e.diffuse),
+                "direct_horizontal": bits(&e.direct_horizontal),
+                "direct_normal": bits(&e.direct_normal),
+            })
+        }
+        "physical_daylight" => {
+            let d = sky.daylight();
+            let (kelvin, duv) = d.global.cct_duv.unwrap_or((f64::NAN, f64::NAN));
+            json!({
+                "global_illuminance": d.global.xyz[1].to_bits(),
+                "diffuse_illuminance": d.diffuse.xyz[1].to_bits(),
+                "direct_illuminance": d.direct.xyz[1].to_bits(),
+                "x": d.global.xy.0.to_bits(),
+                "y": d.global.xy.1.to_bits(),
+                "cct": kelvin.to_bits(),
+                "duv": duv.to_bits(),
+                "melanopic_edi": d.global.melanopic_edi.to_bits(),
+            })
+        }
+        _ => {
+            let dirs = case["dirs"]
+                .as_array()
+                .ok_or_else(|| BadCase("dirs".to_owned()))?
+                .iter()
+                .map(|d| {
+                    let c = |i: usize| d.get(i).and_then(Value::as_f64).unwrap_or(f64::NAN);
+                    bits(&sky.spectral_radiance([c(0), c(1), c(2)]))
+                })
+                .collect::<Vec<_>>();
+            json!({ "values": dirs })
+        }
+    }))
+}
+
 fn run(case: &Value) -> Result<Value, BadCase> {
     let outcome = match text(case, "kind")? {
         "daylight" => daylight_case(case)?,
@@ -439,6 +507,10 @@ fn run(case: &Value) -> Result<Value, BadCase> {
         "sky" => sky_case(case)?,
         "render" => render_case(case)?,
         "direction" => direction_case(case)?,
+        #[cfg(feature = "physical")]
+        kind @ ("physical_irradiance" | "physical_daylight" | "physical_radiance") => {
+            physical_case(case, kind)?
+        }
         other => return Err(BadCase(format!("kind {other}"))),
     };
     Ok(outcome.unwrap_or_else(|e| json!({ "error": e.to_string() })))
