@@ -94,7 +94,7 @@ d = skymodels.daylight(48.21, 16.37, "2026-06-21T11:00")
 assert d["global_illuminance"] > 50_000, d
 names = sorted(m.metadata["Name"] for m in metadata.distributions())
 print("skymodels", skymodels.__version__, "imports and computes in an environment of:", ", ".join(names),
-      "(pip and setuptools: the venv module's own)")
+      "(pip and setuptools come with venv)")
 '
     "$work/venv/bin/python" -m pip install -q --disable-pip-version-check "pytest>=8"
     printf 'fresh virtual environment with the wheel and pytest: %d s\n' "$((SECONDS - began))"

@@ -19,14 +19,17 @@
 #          errors, images), node tests of its JavaScript surface, the demos' browser tests and
 #          every GPU shader against sky-core (WebGL2 and WebGPU on SwiftShader) in Debian's
 #          chromium, and the npm tarball installed into a scratch project (scripts/wasm.sh test)
+#   python: the skymodels wheel (sky-py, PyO3 + maturin, abi3) built, installed into a fresh
+#          virtual environment with its declared dependencies only, and its pytest suite run
+#          there against sky-core's own values (scripts/python.sh test)
 #
 # Two lanes run side by side on the machine's cores: the host lane (clippy, doc, the workspace
-# tests, micromath, publish) in target/debug, and the other lane (cross, wasm, fuzz, doc blocks)
-# in target/cross, target/wasm, fuzz/target and target/release. They share no build directory,
-# so neither waits for the other's cargo lock, and each fills the other's single-threaded
-# stretches (link-time optimisation, qemu, fuzzing, the browser). The other lane's output is
-# printed when it ends; the first failure in either lane stops both. Each step's time is
-# printed at the end (docs/testing.md has a run's figures).
+# tests, micromath, publish) in target/debug, and the other lane (cross, wasm, fuzz, doc blocks,
+# python) in target/cross, target/wasm, fuzz/target, target/release and target/python. They
+# share no build directory, so neither waits for the other's cargo lock, and each fills the
+# other's single-threaded stretches (link-time optimisation, qemu, fuzzing, the browser). The
+# other lane's output is printed when it ends; the first failure in either lane stops both.
+# Each step's time is printed at the end (docs/testing.md has a run's figures).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
@@ -105,6 +108,8 @@ other_lane() {
   step other "coverage-guided fuzzing (libFuzzer): every decoder of outside input, 25 s each" \
     scripts/fuzz.sh 25
   step other "the sh and toml blocks of README.md and docs/ run as written" scripts/doc-blocks.sh
+  step other "skymodels: the Python wheel (abi3), in a fresh virtual environment, against sky-core" \
+    scripts/python.sh test
 }
 
 step host "setup" scripts/setup.sh
@@ -146,12 +151,12 @@ step host "sky-core's examples run" examples
 step host "cargo publish --dry-run: sky-core, sky-gpu and sky-train package and build from their packaged sources" \
   cargo publish --workspace --dry-run --locked --allow-dirty "${dev_profile[@]}"
 
-printf '\n==> the host lane passed at %d s; waiting for the other lane (cross, wasm, fuzz, doc blocks)\n' \
+printf '\n==> the host lane passed at %d s; waiting for the other lane (cross, wasm, fuzz, doc blocks, python)\n' \
   "$(($(date +%s) - start))"
 lane_status=0
 wait "$lane_pid" || lane_status=$?
 lane_pid=
-printf '\n==> the other lane: cross, wasm, fuzz, doc blocks (its output, in order)\n'
+printf '\n==> the other lane: cross, wasm, fuzz, doc blocks, python (its output, in order)\n'
 cat "$lane_log"
 if [ "$lane_status" -ne 0 ]; then
   printf '\nFAIL: the other lane (above), exit status %d\n' "$lane_status" >&2

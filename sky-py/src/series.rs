@@ -96,6 +96,58 @@ impl<const N: usize> Columns<N> {
     }
 }
 
+/// Arrays shorter than this are computed on one thread: a thread's start costs tens of
+/// microseconds, a time's daylight about one.
+const MIN_CHUNK: usize = 8192;
+
+/// `row(i, item)` for every item of `items`, as columns in the items' order: the items split
+/// into one contiguous chunk per core (std threads, for arrays of at least [`MIN_CHUNK`] per
+/// thread). The values do not depend on the split; an error is the first by index, as one
+/// thread would find it.
+fn columns<T: Sync, const N: usize>(
+    names: [&'static str; N],
+    items: &[T],
+    row: impl Fn(usize, &T) -> PyResult<[f64; N]> + Sync,
+) -> PyResult<Columns<N>> {
+    let chunk_of = |start: usize, chunk: &[T]| -> PyResult<Columns<N>> {
+        let mut out = Columns::new(names, chunk.len())?;
+        for (k, item) in chunk.iter().enumerate() {
+            out.push(row(start + k, item)?);
+        }
+        Ok(out)
+    };
+    let cores = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
+    let threads = cores.min(items.len() / MIN_CHUNK).max(1);
+    if threads == 1 {
+        return chunk_of(0, items);
+    }
+    let size = items.len().div_ceil(threads);
+    let parts: Vec<PyResult<Columns<N>>> = std::thread::scope(|scope| {
+        let workers: Vec<_> = items
+            .chunks(size)
+            .enumerate()
+            .map(|(t, chunk)| scope.spawn(move || chunk_of(t * size, chunk)))
+            .collect();
+        workers
+            .into_iter()
+            .map(|w| {
+                w.join().unwrap_or_else(|_| {
+                    Err(pyo3::exceptions::PyRuntimeError::new_err(
+                        "a worker thread failed",
+                    ))
+                })
+            })
+            .collect()
+    });
+    let mut all = Columns::new(names, items.len())?;
+    for part in parts {
+        for (column, values) in all.data.iter_mut().zip(part?.data) {
+            column.extend_from_slice(&values);
+        }
+    }
+    Ok(all)
+}
+
 /// The CCT in kelvin and Duv of a [`sky_core::cct::Cct`], NaN where there is none.
 fn cct_columns(cct: Option<sky_core::cct::Cct>) -> (f64, f64) {
     cct.map_or((f64::NAN, f64::NAN), |c| {
@@ -151,15 +203,13 @@ pub(crate) fn daylight_series<'py>(
     let algorithm = time::algorithm(algorithm)?;
     let times = times.as_array().to_vec();
     let aod = Broadcast::new("aod", &aod, times.len())?;
-    let columns = py.detach(|| -> PyResult<_> {
-        let mut columns = Columns::new(DAYLIGHT, times.len())?;
-        for (i, &t) in times.iter().enumerate() {
+    let columns = py.detach(|| {
+        columns(DAYLIGHT, &times, |i, &t| {
             let sun = time::sun_at(algorithm, t, &site, i, scalar)?;
             let day =
                 Daylight::new(sun.sun(), aod.at(i)).map_err(|e| value_error(&aod.element(i), e))?;
-            columns.push(daylight_row(&day));
-        }
-        Ok(columns)
+            Ok(daylight_row(&day))
+        })
     })?;
     let dict = PyDict::new(py);
     columns.into_dict(&dict)?;
@@ -178,15 +228,13 @@ pub(crate) fn daylight_at_sun<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let zenith = sun_zenith.as_array().to_vec();
     let aod = Broadcast::new("aod", &aod, zenith.len())?;
-    let columns = py.detach(|| -> PyResult<_> {
-        let mut columns = Columns::new(DAYLIGHT, zenith.len())?;
-        for (i, &z) in zenith.iter().enumerate() {
+    let columns = py.detach(|| {
+        columns(DAYLIGHT, &zenith, |i, &z| {
             let sun =
                 Sun::new(z, 0.0).map_err(|e| value_error(&element("sun_zenith", i, scalar), e))?;
             let day = Daylight::new(sun, aod.at(i)).map_err(|e| value_error(&aod.element(i), e))?;
-            columns.push(daylight_row(&day));
-        }
-        Ok(columns)
+            Ok(daylight_row(&day))
+        })
     })?;
     let dict = PyDict::new(py);
     columns.into_dict(&dict)?;
@@ -208,30 +256,26 @@ pub(crate) fn sun_position_series<'py>(
     let site = time::site(latitude, longitude, elevation)?;
     let algorithm = time::algorithm(algorithm)?;
     let times = times.as_array().to_vec();
-    let columns = py.detach(|| -> PyResult<_> {
-        let mut columns = Columns::new(
-            [
-                "zenith",
-                "apparent_zenith",
-                "elevation",
-                "azimuth",
-                "sun_zenith",
-                "sun_azimuth",
-            ],
-            times.len(),
-        )?;
-        for (i, &t) in times.iter().enumerate() {
+    let names = [
+        "zenith",
+        "apparent_zenith",
+        "elevation",
+        "azimuth",
+        "sun_zenith",
+        "sun_azimuth",
+    ];
+    let columns = py.detach(|| {
+        columns(names, &times, |i, &t| {
             let p = time::sun_at(algorithm, t, &site, i, scalar)?;
-            columns.push([
+            Ok([
                 p.zenith_deg(),
                 p.apparent_zenith_deg(),
                 p.elevation_deg(),
                 p.azimuth_deg(),
                 f64::from(p.sun().zenith()),
                 f64::from(p.sun().azimuth()),
-            ]);
-        }
-        Ok(columns)
+            ])
+        })
     })?;
     let dict = PyDict::new(py);
     columns.into_dict(&dict)?;
@@ -346,6 +390,30 @@ const WEATHER: [&str; 8] = [
     "diffuse_illuminance",
 ];
 
+/// Every column of the controller's rows: [`STEP`], [`WEATHER`], the four drive levels and
+/// whether the luminance was clipped (1 or 0).
+const CONTROLLER: [&str; 19] = [
+    "illuminance",
+    "x",
+    "y",
+    "cct",
+    "duv",
+    "melanopic_edi",
+    "sky_type",
+    "clear_sky_index",
+    "overcast_fraction",
+    "global_irradiance",
+    "diffuse_irradiance",
+    "direct_normal_irradiance",
+    "clear_sky_illuminance",
+    "diffuse_illuminance",
+    "level_red",
+    "level_green",
+    "level_blue",
+    "level_white",
+    "luminance_clipped",
+];
+
 /// One row of the step's columns ([`STEP`]).
 fn step_row(s: &Step) -> [f64; 6] {
     let (x, y) = sky_core::daylight::chromaticity(s.illuminance);
@@ -411,14 +479,8 @@ pub(crate) fn controller_series<'py>(
     let lamp = self::luminaire(luminaire)?;
     let readings = Readings::new(lux, ghi, dhi, times.len())?;
     let measured = !matches!(readings, Readings::None);
-    let (columns, weather, levels, clipped) = py.detach(|| -> PyResult<_> {
-        let n = times.len();
-        let mut columns = Columns::new(STEP, n)?;
-        let mut weather = Columns::new(WEATHER, if measured { n } else { 0 })?;
-        let (mut levels, mut clipped) = (Vec::new(), Vec::new());
-        reserve(&mut levels, 4 * n)?;
-        reserve(&mut clipped, n)?;
-        for (i, &t) in times.iter().enumerate() {
+    let columns = py.detach(|| {
+        columns(CONTROLLER, &times, |i, &t| {
             let time = time::utc_time(t, i, scalar)?;
             let settings = Settings {
                 aerosol_optical_depth: aod.at(i),
@@ -449,22 +511,48 @@ pub(crate) fn controller_series<'py>(
                 };
                 value_error(&context, e)
             })?;
-            columns.push(step_row(&s));
-            if measured {
-                weather.push(weather_row(&s));
-            }
-            levels.extend(s.drive.levels.map(f64::from));
-            clipped.push(s.drive.luminance_clipped);
-        }
-        Ok((columns, weather, levels, clipped))
+            let mut row = [0.0; CONTROLLER.len()];
+            let (step, rest) = row.split_at_mut(STEP.len());
+            let (weather, rest) = rest.split_at_mut(WEATHER.len());
+            let (levels, clipped) = rest.split_at_mut(4);
+            step.copy_from_slice(&step_row(&s));
+            weather.copy_from_slice(&weather_row(&s));
+            levels.copy_from_slice(&s.drive.levels.map(f64::from));
+            clipped.fill(f64::from(u8::from(s.drive.luminance_clipped)));
+            Ok(row)
+        })
     })?;
     let dict = PyDict::new(py);
-    columns.into_dict(&dict)?;
-    if measured {
-        weather.into_dict(&dict)?;
+    let mut data = columns.data.into_iter();
+    for name in STEP {
+        dict.set_item(
+            name,
+            PyArray1::from_vec(py, data.next().unwrap_or_default()),
+        )?;
     }
+    for name in WEATHER {
+        let column = data.next().unwrap_or_default();
+        if measured {
+            dict.set_item(name, PyArray1::from_vec(py, column))?;
+        }
+    }
+    let levels: Vec<Vec<f64>> = data.by_ref().take(4).collect();
+    let clipped: Vec<bool> = data
+        .next()
+        .unwrap_or_default()
+        .into_iter()
+        .map(|c| c != 0.0)
+        .collect();
     let n = clipped.len();
-    dict.set_item("levels", PyArray1::from_vec(py, levels).reshape([n, 4])?)?;
+    let mut interleaved = Vec::new();
+    reserve(&mut interleaved, 4 * n)?;
+    for k in 0..n {
+        interleaved.extend(levels.iter().map(|c| c.get(k).copied().unwrap_or(f64::NAN)));
+    }
+    dict.set_item(
+        "levels",
+        PyArray1::from_vec(py, interleaved).reshape([n, 4])?,
+    )?;
     dict.set_item("luminance_clipped", PyArray1::from_vec(py, clipped))?;
     Ok(dict)
 }

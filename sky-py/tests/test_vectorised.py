@@ -131,3 +131,25 @@ def test_every_form_of_a_time_is_the_same_instant():
     assert same(got["cct"], [want["cct"]] * 2)
     seconds = np.array(["2026-03-20T16:05:30"], dtype="datetime64[s]")
     assert skymodels.daylight(*VIENNA, seconds)["cct"].shape == (1,)
+
+
+def test_long_arrays_split_over_threads_give_the_same_values_and_the_first_error():
+    """Arrays of 8192 times or more per core are split over the cores: the values are those of
+    short (one-thread) calls, and an error names the first bad element."""
+    micros = micros_between(np.random.default_rng(12), FAST_YEARS, 40_000)
+    times = as_times(micros)
+    lux = np.random.default_rng(13).uniform(0.0, 10_000.0, len(micros))
+    calls = [
+        lambda t, s: skymodels.daylight(*VIENNA, t),
+        lambda t, s: skymodels.sun_position(*VIENNA, t),
+        lambda t, s: skymodels.controller_step(*VIENNA, t, lux=lux[s]),
+    ]
+    for call in calls:
+        whole = call(times, slice(None))
+        parts = [call(times[k : k + 5000], slice(k, k + 5000)) for k in range(0, len(times), 5000)]
+        for key, column in whole.items():
+            assert same(column, np.concatenate([p[key] for p in parts])), key
+    aod = np.full(len(micros), 0.1)
+    aod[[25_000, 33_000]] = 0.9
+    with pytest.raises(ValueError, match=r"^aod\[25000\]: aerosol optical depth = 0\.9"):
+        skymodels.daylight(*VIENNA, times, aod)

@@ -101,14 +101,19 @@ def _per_time(name, value, shape, default=None):
     if value is None:
         value = default
     array = _np.asarray(value, dtype=_np.float64)
-    if array.ndim == 0:
-        return array.astype(_np.float32).reshape(1)
-    if array.shape != tuple(shape):
+    if array.ndim != 0 and array.shape != tuple(shape):
         raise ValueError(
             f"{name}: shape {array.shape} differs from the times' {tuple(shape)}: "
             f"give one value, or one per time"
         )
-    return _np.ascontiguousarray(array.astype(_np.float32).ravel())
+    return _float32(array).ravel()
+
+
+def _float32(array):
+    """float64 values as float32, rounded to nearest; beyond float32's range they become
+    infinite, which sky-core then refuses with the parameter's range (no overflow warning)."""
+    with _np.errstate(over="ignore"):
+        return _np.ascontiguousarray(array, dtype=_np.float32)
 
 
 def _shaped(columns, shape, scalar):
@@ -178,7 +183,7 @@ def daylight_at_sun(sun_zenith, aod=None):
     """
     zenith = _np.asarray(sun_zenith, dtype=_np.float64)
     shape, scalar = zenith.shape, zenith.ndim == 0
-    flat = _np.ascontiguousarray(zenith.astype(_np.float32).ravel())
+    flat = _float32(zenith).ravel()
     aod = _per_time("aod", aod, shape, DEFAULT_AOD)
     return _shaped(_skymodels.daylight_at_sun(flat, aod, scalar), shape, scalar)
 
