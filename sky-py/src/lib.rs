@@ -1,7 +1,7 @@
 //! sky-core for Python: the extension module `skymodels._skymodels` of the `skymodels` wheel.
 //!
-//! A thin layer: each sky-core type is bound in one place ([`time`]: UTC instants and sites;
-//! [`series`]: the daylight, the sun and the controller over arrays of times; [`sky`]: the sky
+//! A thin layer: each sky-core type is bound in one place (`time`: UTC instants and sites;
+//! `series`: the daylight, the sun and the controller over arrays of times; `sky`: the sky
 //! models and their images; `physical`: sky-train's spectral atmosphere, behind the `physical`
 //! feature). The Python package (`python/skymodels/__init__.py`) turns Python's and numpy's
 //! times into microseconds since 1970 UTC and documents the functions taking times; everything

@@ -148,6 +148,20 @@ fn columns<T: Sync, const N: usize>(
     Ok(all)
 }
 
+/// [`columns`] with the GIL released, as a dict of float64 arrays.
+fn series<'py, T: Sync, const N: usize>(
+    py: Python<'py>,
+    names: [&'static str; N],
+    items: &[T],
+    row: impl Fn(usize, &T) -> PyResult<[f64; N]> + Sync,
+) -> PyResult<Bound<'py, PyDict>> {
+    let row = &row;
+    let columns = py.detach(|| columns(names, items, row))?;
+    let dict = PyDict::new(py);
+    columns.into_dict(&dict)?;
+    Ok(dict)
+}
+
 /// The CCT in kelvin and Duv of a [`sky_core::cct::Cct`], NaN where there is none.
 fn cct_columns(cct: Option<sky_core::cct::Cct>) -> (f64, f64) {
     cct.map_or((f64::NAN, f64::NAN), |c| {
@@ -203,17 +217,12 @@ pub(crate) fn daylight_series<'py>(
     let algorithm = time::algorithm(algorithm)?;
     let times = times.as_array().to_vec();
     let aod = Broadcast::new("aod", &aod, times.len())?;
-    let columns = py.detach(|| {
-        columns(DAYLIGHT, &times, |i, &t| {
-            let sun = time::sun_at(algorithm, t, &site, i, scalar)?;
-            let day =
-                Daylight::new(sun.sun(), aod.at(i)).map_err(|e| value_error(&aod.element(i), e))?;
-            Ok(daylight_row(&day))
-        })
-    })?;
-    let dict = PyDict::new(py);
-    columns.into_dict(&dict)?;
-    Ok(dict)
+    series(py, DAYLIGHT, &times, |i, &t| {
+        let sun = time::sun_at(algorithm, t, &site, i, scalar)?;
+        let day =
+            Daylight::new(sun.sun(), aod.at(i)).map_err(|e| value_error(&aod.element(i), e))?;
+        Ok(daylight_row(&day))
+    })
 }
 
 /// The clear-sky daylight for each sun zenith angle of `sun_zenith` (radians): the Python
@@ -228,17 +237,12 @@ pub(crate) fn daylight_at_sun<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let zenith = sun_zenith.as_array().to_vec();
     let aod = Broadcast::new("aod", &aod, zenith.len())?;
-    let columns = py.detach(|| {
-        columns(DAYLIGHT, &zenith, |i, &z| {
-            let sun =
-                Sun::new(z, 0.0).map_err(|e| value_error(&element("sun_zenith", i, scalar), e))?;
-            let day = Daylight::new(sun, aod.at(i)).map_err(|e| value_error(&aod.element(i), e))?;
-            Ok(daylight_row(&day))
-        })
-    })?;
-    let dict = PyDict::new(py);
-    columns.into_dict(&dict)?;
-    Ok(dict)
+    series(py, DAYLIGHT, &zenith, |i, &z| {
+        let sun =
+            Sun::new(z, 0.0).map_err(|e| value_error(&element("sun_zenith", i, scalar), e))?;
+        let day = Daylight::new(sun, aod.at(i)).map_err(|e| value_error(&aod.element(i), e))?;
+        Ok(daylight_row(&day))
+    })
 }
 
 /// The sun's position at each of `times`: the Python package's `sun_position`.
@@ -264,22 +268,17 @@ pub(crate) fn sun_position_series<'py>(
         "sun_zenith",
         "sun_azimuth",
     ];
-    let columns = py.detach(|| {
-        columns(names, &times, |i, &t| {
-            let p = time::sun_at(algorithm, t, &site, i, scalar)?;
-            Ok([
-                p.zenith_deg(),
-                p.apparent_zenith_deg(),
-                p.elevation_deg(),
-                p.azimuth_deg(),
-                f64::from(p.sun().zenith()),
-                f64::from(p.sun().azimuth()),
-            ])
-        })
-    })?;
-    let dict = PyDict::new(py);
-    columns.into_dict(&dict)?;
-    Ok(dict)
+    series(py, names, &times, |i, &t| {
+        let p = time::sun_at(algorithm, t, &site, i, scalar)?;
+        Ok([
+            p.zenith_deg(),
+            p.apparent_zenith_deg(),
+            p.elevation_deg(),
+            p.azimuth_deg(),
+            f64::from(p.sun().zenith()),
+            f64::from(p.sun().azimuth()),
+        ])
+    })
 }
 
 /// The followed light by name.
