@@ -31,9 +31,9 @@ fn keyword(flag: &str) -> String {
 /// `aerosol_g` (Henyey-Greenstein asymmetry, -0.95 to 0.95), `aerosol_scale_height` (m, 100 to
 /// 20000), `ozone_du` (Dobson units, 0 to 1000), `albedo` (the ground's, 0 to 1).
 ///
-/// The precomputation takes a minute or so on two cores, with the GIL released; it is kept
-/// on disk in `cache_dir` (None: sky-train's, `$SKY_TRAIN_CACHE_DIR` or
-/// `~/.cache/sky-train`; False: not kept) and read back in a second. `resolution="coarse"`
+/// The precomputation takes half a minute or more (28 s on a quiet 2-core machine), with the
+/// GIL released; it is kept on disk in `cache_dir` (None: sky-train's, `$SKY_TRAIN_CACHE_DIR`
+/// or `~/.cache/sky-train`; False: not kept) and read back from there. `resolution="coarse"`
 /// is a handful of cells, precomputed in milliseconds: for tests only, not a sky to look at.
 /// Sun zenith angles are radians, 0 to 108° (the sun 18° below the horizon).
 #[pyclass(frozen, module = "skymodels", name = "PhysicalAtmosphere")]
