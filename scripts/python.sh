@@ -98,7 +98,7 @@ print("skymodels", skymodels.__version__, "imports and computes in an environmen
 '
     "$work/venv/bin/python" -m pip install -q --disable-pip-version-check "pytest>=8"
     printf 'fresh virtual environment with the wheel and pytest: %d s\n' "$((SECONDS - began))"
-    SKY_PY_REFERENCE="$CARGO_TARGET_DIR/release/sky-py-reference" \
+    PYTHONDONTWRITEBYTECODE=1 SKY_PY_REFERENCE="$CARGO_TARGET_DIR/release/sky-py-reference" \
       SKY_PY_VARIANT="$variant" \
       "$work/venv/bin/python" -m pytest -q -p no:cacheprovider sky-py/tests
     ;;

@@ -24,7 +24,7 @@ mod physical;
 
 use core::fmt::Display;
 
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyMemoryError, PyValueError};
 use pyo3::prelude::*;
 use sky_core::daylight;
 
@@ -36,6 +36,20 @@ pub(crate) fn value_error(context: &str, message: impl Display) -> PyErr {
     } else {
         PyValueError::new_err(format!("{context}: {message}"))
     }
+}
+
+/// Room for `n` more items in `v`, or Python's `MemoryError` (never an abort).
+pub(crate) fn reserve<T>(v: &mut Vec<T>, n: usize) -> PyResult<()> {
+    v.try_reserve_exact(n)
+        .map_err(|_| PyMemoryError::new_err(format!("{n} values do not fit in memory")))
+}
+
+/// The `n` items of `items` in a vector, or Python's `MemoryError`.
+pub(crate) fn collect<T>(n: usize, items: impl IntoIterator<Item = T>) -> PyResult<Vec<T>> {
+    let mut v = Vec::new();
+    reserve(&mut v, n)?;
+    v.extend(items);
+    Ok(v)
 }
 
 /// The extension module.

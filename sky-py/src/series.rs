@@ -15,7 +15,13 @@ use sky_core::solar::SunAlgorithm;
 use sky_core::{SkyError, Sun};
 
 use crate::time::{self, element};
-use crate::value_error;
+use crate::{collect, reserve, value_error};
+
+/// The elements of a 1-D array, copied (the GIL is then released), or `MemoryError`.
+fn elements<T: numpy::Element + Copy>(array: &PyReadonlyArray1<'_, T>) -> PyResult<Vec<T>> {
+    let view = array.as_array();
+    collect(view.len(), view.iter().copied())
+}
 
 /// An f32 parameter given once for every time (length 1) or per time (the times' length).
 struct Broadcast {
@@ -31,7 +37,7 @@ impl Broadcast {
     /// # Errors
     /// A `ValueError` naming `name` for another length.
     fn new(name: &'static str, values: &PyReadonlyArray1<'_, f32>, n: usize) -> PyResult<Self> {
-        let values = values.as_array().to_vec();
+        let values = elements(values)?;
         if values.len() != 1 && values.len() != n {
             return Err(value_error(
                 name,
@@ -58,12 +64,6 @@ impl Broadcast {
     fn element(&self, i: usize) -> String {
         element(self.name, i, self.scalar)
     }
-}
-
-/// Room for `n` more items in `v`, or Python's `MemoryError`.
-fn reserve<T>(v: &mut Vec<T>, n: usize) -> PyResult<()> {
-    v.try_reserve_exact(n)
-        .map_err(|_| pyo3::exceptions::PyMemoryError::new_err(format!("{n} values do not fit")))
 }
 
 /// Columns of f64 values named `NAMES`, filled one time at a time.
@@ -126,16 +126,23 @@ fn columns<T: Sync, const N: usize>(
         let workers: Vec<_> = items
             .chunks(size)
             .enumerate()
-            .map(|(t, chunk)| scope.spawn(move || chunk_of(t * size, chunk)))
+            .map(|(t, chunk)| {
+                let start = t * size;
+                let worker =
+                    std::thread::Builder::new().spawn_scoped(scope, move || chunk_of(start, chunk));
+                (start, chunk, worker)
+            })
             .collect();
         workers
             .into_iter()
-            .map(|w| {
-                w.join().unwrap_or_else(|_| {
+            .map(|(start, chunk, worker)| match worker {
+                Ok(w) => w.join().unwrap_or_else(|_| {
                     Err(pyo3::exceptions::PyRuntimeError::new_err(
                         "a worker thread failed",
                     ))
-                })
+                }),
+                // No thread to be had: this one computes the chunk.
+                Err(_) => chunk_of(start, chunk),
             })
             .collect()
     });
@@ -215,7 +222,7 @@ pub(crate) fn daylight_series<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let site = time::site(latitude, longitude, elevation)?;
     let algorithm = time::algorithm(algorithm)?;
-    let times = times.as_array().to_vec();
+    let times = elements(&times)?;
     let aod = Broadcast::new("aod", &aod, times.len())?;
     series(py, DAYLIGHT, &times, |i, &t| {
         let sun = time::sun_at(algorithm, t, &site, i, scalar)?;
@@ -235,7 +242,7 @@ pub(crate) fn daylight_at_sun<'py>(
     aod: PyReadonlyArray1<'py, f32>,
     scalar: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let zenith = sun_zenith.as_array().to_vec();
+    let zenith = elements(&sun_zenith)?;
     let aod = Broadcast::new("aod", &aod, zenith.len())?;
     series(py, DAYLIGHT, &zenith, |i, &z| {
         let sun =
@@ -259,7 +266,7 @@ pub(crate) fn sun_position_series<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let site = time::site(latitude, longitude, elevation)?;
     let algorithm = time::algorithm(algorithm)?;
-    let times = times.as_array().to_vec();
+    let times = elements(&times)?;
     let names = [
         "zenith",
         "apparent_zenith",
@@ -466,7 +473,7 @@ pub(crate) fn controller_series<'py>(
     scalar: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let site = time::site(latitude, longitude, elevation)?;
-    let times = times.as_array().to_vec();
+    let times = elements(&times)?;
     let aod = Broadcast::new("aod", &aod, times.len())?;
     let settings = Settings {
         aerosol_optical_depth: aod.at(0),

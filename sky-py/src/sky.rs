@@ -17,7 +17,7 @@ use sky_core::perez::SkyCondition;
 use sky_core::sh::ShSky;
 use sky_core::{CieSky, NeuralSky, PerezSky, Photometry, PreethamSky, Sun, Vec3, color};
 
-use crate::value_error;
+use crate::{collect, value_error};
 
 /// The model behind a [`Sky`].
 // One per Python `Sky`; the large states are boxed.
@@ -199,12 +199,8 @@ fn image_size(width: i64, height: i64) -> PyResult<(u32, u32)> {
 }
 
 /// A vector of `n` copies of `value`, or Python's `MemoryError`.
-pub(crate) fn filled<T: Clone>(n: usize, value: T) -> PyResult<Vec<T>> {
-    let mut v = Vec::new();
-    v.try_reserve_exact(n)
-        .map_err(|_| pyo3::exceptions::PyMemoryError::new_err(format!("{n} values do not fit")))?;
-    v.resize(n, value);
-    Ok(v)
+fn filled<T: Clone>(n: usize, value: T) -> PyResult<Vec<T>> {
+    collect(n, core::iter::repeat_n(value, n))
 }
 
 /// The sun at `zenith`, `azimuth` (radians).
@@ -224,11 +220,10 @@ fn directions(
             format!("shape {shape:?}: the last axis must hold x, y, z (length 3)"),
         ));
     };
-    let flat: Vec<f32> = dirs.as_array().iter().copied().collect();
-    let dirs = flat
-        .chunks_exact(3)
-        .map(|c| Vec3::new(c[0], c[1], c[2]))
-        .collect();
+    let n = leading.iter().product();
+    let mut flat = dirs.as_array().into_iter().copied();
+    let mut next = || flat.next().unwrap_or(f32::NAN); // the shape holds 3 n of them
+    let dirs = collect(n, (0..n).map(|_| Vec3::new(next(), next(), next())))?;
     Ok((leading.to_vec(), dirs))
 }
 
@@ -643,12 +638,14 @@ pub(crate) fn direction<'py>(
             ),
         ));
     }
-    let values: Vec<f32> = zenith
-        .as_array()
-        .iter()
-        .zip(azimuth.as_array().iter())
-        .flat_map(|(&t, &p)| geom::direction(t, p).to_array())
-        .collect();
+    let values = collect(
+        3 * zenith.len(),
+        zenith
+            .as_array()
+            .iter()
+            .zip(azimuth.as_array().iter())
+            .flat_map(|(&t, &p)| geom::direction(t, p).to_array()),
+    )?;
     shaped(py, values, shape, 3)
 }
 
@@ -665,6 +662,6 @@ pub(crate) fn equirect_directions<'py>(
     let (width, height) = image_size(width, height)?;
     let extent = self::extent(extent)?;
     let dirs = py.detach(|| grid(width, height, extent))?;
-    let values = dirs.iter().flat_map(|d| d.to_array()).collect();
+    let values = collect(3 * dirs.len(), dirs.iter().flat_map(|d| d.to_array()))?;
     shaped(py, values, vec![height as usize, width as usize], 3)
 }
