@@ -66,7 +66,7 @@ impl Broadcast {
     }
 }
 
-/// Columns of f64 values named `NAMES`, filled one time at a time.
+/// Columns of f64 values, one per name, filled one time at a time.
 struct Columns<const N: usize> {
     names: [&'static str; N],
     data: [Vec<f64>; N],
