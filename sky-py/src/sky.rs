@@ -6,6 +6,7 @@
 //! up; any length); results have the same leading shape.
 
 use numpy::{AllowTypeChange, PyArray1, PyArrayLikeDyn, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::exceptions::PyOverflowError;
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 use sky_core::aoas::{AoasSky, DayCycle, Preset, Scattering};
@@ -180,15 +181,33 @@ fn whole<T: TryFrom<i64>>(name: &'static str, value: i64, min: i64, max: i64) ->
     }
 }
 
+/// The Python int `value` of the parameter `name` within [`min`, `max`] ([`whole`]); an int
+/// beyond i64 is out of that range too (a `ValueError`, not Python's `OverflowError`).
+fn whole_arg<T: TryFrom<i64>>(
+    name: &'static str,
+    value: &Bound<'_, PyAny>,
+    min: i64,
+    max: i64,
+) -> PyResult<T> {
+    match value.extract::<i64>() {
+        Ok(v) => whole(name, v, min, max),
+        Err(e) if e.is_instance_of::<PyOverflowError>(value.py()) => Err(value_error(
+            "",
+            format!("{name} = {value} is outside the valid range [{min}, {max}]"),
+        )),
+        Err(e) => Err(e),
+    }
+}
+
 /// The most pixels of an image from [`Sky::render`] or [`equirect_directions`]: 8192 × 4096
 /// (as `sky-train render`'s largest), 384 MiB of float32 RGB.
 const MAX_PIXELS: u64 = 1 << 25;
 
 /// A `width` × `height` grid of at most [`MAX_PIXELS`].
-fn image_size(width: i64, height: i64) -> PyResult<(u32, u32)> {
+fn image_size(width: &Bound<'_, PyAny>, height: &Bound<'_, PyAny>) -> PyResult<(u32, u32)> {
     let max = i64::from(Equirect::MAX_SIZE);
-    let width = whole("image width [px]", width, 1, max)?;
-    let height = whole("image height [px]", height, 1, max)?;
+    let width: u32 = whole_arg("image width [px]", width, 1, max)?;
+    let height: u32 = whole_arg("image height [px]", height, 1, max)?;
     if u64::from(width) * u64::from(height) > MAX_PIXELS {
         return Err(value_error(
             "width, height",
@@ -374,14 +393,14 @@ impl Sky {
     #[pyo3(signature = (sky_type, sun_zenith, sun_azimuth, *, zenith_luminance = None,
                         diffuse_illuminance = None, chromaticity = None))]
     fn cie(
-        sky_type: i64,
+        sky_type: &Bound<'_, PyAny>,
         sun_zenith: f32,
         sun_azimuth: f32,
         zenith_luminance: Option<f32>,
         diffuse_illuminance: Option<f32>,
         chromaticity: Option<[f32; 2]>,
     ) -> PyResult<Self> {
-        let sky_type = whole("CIE sky type", sky_type, 1, 15)?;
+        let sky_type = whole_arg("CIE sky type", sky_type, 1, 15)?;
         let sun = sun(sun_zenith, sun_azimuth)?;
         let sky = match (zenith_luminance, diffuse_illuminance) {
             (Some(l), None) => CieSky::new(sky_type, sun, l),
@@ -439,10 +458,10 @@ impl Sky {
         sun_azimuth: f32,
         ghi: f32,
         dhi: f32,
-        day_of_year: i64,
+        day_of_year: &Bound<'_, PyAny>,
         chromaticity: Option<[f32; 2]>,
     ) -> PyResult<Self> {
-        let day_of_year = whole("day of the year", day_of_year, 1, 366)?;
+        let day_of_year = whole_arg("day of the year", day_of_year, 1, 366)?;
         let sun = sun(sun_zenith, sun_azimuth)?;
         let reading = Measurement::Irradiance {
             global: ghi,
@@ -494,9 +513,18 @@ impl Sky {
     /// with `bands` bands (1-7), for a sun at `sun_zenith` in [0, π/2] and `sun_azimuth`
     /// (radians) and `turbidity` in [2.5, 6]. Linear sRGB, cd/m² scale.
     #[staticmethod]
-    #[pyo3(signature = (sun_zenith, sun_azimuth, turbidity, bands = 3))]
-    fn sh(sun_zenith: f32, sun_azimuth: f32, turbidity: f32, bands: i64) -> PyResult<Self> {
-        let bands = whole("SH bands", bands, 1, 7)?;
+    #[pyo3(signature = (sun_zenith, sun_azimuth, turbidity, bands = None),
+           text_signature = "(sun_zenith, sun_azimuth, turbidity, bands=3)")]
+    fn sh(
+        sun_zenith: f32,
+        sun_azimuth: f32,
+        turbidity: f32,
+        bands: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        let bands = match bands {
+            Some(b) => whole_arg("SH bands", b, 1, 7)?,
+            None => 3,
+        };
         let sun = sun(sun_zenith, sun_azimuth)?;
         let sky = ShSky::new(sun, turbidity, bands).map_err(|e| value_error("", e))?;
         Ok(Self {
@@ -572,8 +600,8 @@ impl Sky {
     fn render<'py>(
         &self,
         py: Python<'py>,
-        width: i64,
-        height: i64,
+        width: &Bound<'py, PyAny>,
+        height: &Bound<'py, PyAny>,
         extent: &str,
         quantity: &str,
     ) -> PyResult<Bound<'py, PyAny>> {
@@ -655,8 +683,8 @@ pub(crate) fn direction<'py>(
 #[pyo3(signature = (width, height, *, extent = "upper"))]
 pub(crate) fn equirect_directions<'py>(
     py: Python<'py>,
-    width: i64,
-    height: i64,
+    width: &Bound<'py, PyAny>,
+    height: &Bound<'py, PyAny>,
     extent: &str,
 ) -> PyResult<Bound<'py, PyAny>> {
     let (width, height) = image_size(width, height)?;

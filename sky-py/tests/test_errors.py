@@ -83,6 +83,9 @@ def test_sky_parameters():
     raises(lambda: Sky.cie(16, 0.5, 0.0, zenith_luminance=1.0), "CIE sky type = 16", "[1, 15]")
     raises(lambda: Sky.cie(300, 0.5, 0.0, zenith_luminance=1.0), "CIE sky type = 300")
     raises(lambda: Sky.cie(-1, 0.5, 0.0, zenith_luminance=1.0), "CIE sky type = -1")
+    raises(lambda: Sky.cie(2**70, 0.5, 0.0, zenith_luminance=1.0),
+           "CIE sky type = 1180591620717411303424", "[1, 15]")
+    raises(lambda: Sky.cie(3.0, 0.5, 0.0, zenith_luminance=1.0), error=TypeError)
     raises(lambda: Sky.cie(3, 0.5, 0.0), "exactly one")
     raises(lambda: Sky.cie(3, 0.5, 0.0, zenith_luminance=1.0, diffuse_illuminance=1.0),
            "exactly one")
@@ -98,6 +101,8 @@ def test_sky_parameters():
     raises(lambda: Sky.aoas("twilight"), "preset", "coral")
     raises(lambda: Sky.sh(0.5, 0.0, 3.0, bands=8), "SH bands = 8", "[1, 7]")
     raises(lambda: Sky.sh(0.5, 0.0, 3.0, bands=-3), "SH bands = -3")
+    raises(lambda: Sky.sh(0.5, 0.0, 3.0, bands=-(2**64)), "SH bands = -18446744073709551616")
+    raises(lambda: Sky.perez_from_irradiance(0.5, 0.0, 400.0, 100.0, 2**63), "day of the year")
     raises(lambda: Sky.preetham("high", 0.0, 3.0), error=TypeError)
 
 
@@ -113,6 +118,7 @@ def test_sky_evaluation_and_images():
     raises(lambda: sky.render(8, 4, extent="dome"), "extent", '"upper"')
     raises(lambda: sky.render(8, 4, quantity="radiance"), "quantity", '"rgb"')
     raises(lambda: skymodels.equirect_directions(-8, 4), "image width [px] = -8")
+    raises(lambda: sky.render(8, 2**80), "image height [px] = 1208925819614629174706176")
     raises(lambda: skymodels.direction(np.zeros(3), np.zeros(4)), error=ValueError)
 
 
