@@ -300,8 +300,11 @@ fn light(name: &str) -> PyResult<Light> {
     }
 }
 
-/// The separation model by name.
-fn decomposition(name: &str) -> PyResult<Decomposition> {
+/// The separation model by name; None: sky-core's default ([`Decomposition::default`]).
+fn decomposition(name: Option<&str>) -> PyResult<Decomposition> {
+    let Some(name) = name else {
+        return Ok(Decomposition::default());
+    };
     match name {
         "erbs" => Ok(Decomposition::Erbs),
         "engerer2" => Ok(Decomposition::Engerer2),
@@ -465,7 +468,7 @@ pub(crate) fn controller_series<'py>(
     algorithm: &str,
     light: &str,
     full_scale_lux: f32,
-    decomposition: &str,
+    decomposition: Option<&str>,
     lux: Option<PyReadonlyArray1<'py, f32>>,
     ghi: Option<PyReadonlyArray1<'py, f32>>,
     dhi: Option<PyReadonlyArray1<'py, f32>>,
@@ -475,12 +478,15 @@ pub(crate) fn controller_series<'py>(
     let site = time::site(latitude, longitude, elevation)?;
     let times = elements(&times)?;
     let aod = Broadcast::new("aod", &aod, times.len())?;
+    // The fields bound here; sky-core's defaults for the rest.
+    #[allow(clippy::needless_update)] // sky-core's settings grow: the site's parameters
     let settings = Settings {
         aerosol_optical_depth: aod.at(0),
         light: self::light(light)?,
         full_scale_lux,
         sun: time::algorithm(algorithm)?,
         decomposition: self::decomposition(decomposition)?,
+        ..Settings::default()
     };
     let lamp = self::luminaire(luminaire)?;
     let readings = Readings::new(lux, ghi, dhi, times.len())?;

@@ -57,7 +57,7 @@ def test_controller_settings_and_measurements():
     step = skymodels.controller_step
     raises(lambda: step(*VIENNA, NOON, full_scale_lux=0.0), "full_scale_lux")
     raises(lambda: step(*VIENNA, NOON, light="window"), "light", '"global"', '"sky"')
-    raises(lambda: step(*VIENNA, NOON, decomposition="dirint"), "decomposition", '"erbs"')
+    raises(lambda: step(*VIENNA, NOON, decomposition="by-hand"), "decomposition", '"erbs"')
     raises(lambda: step(*VIENNA, NOON, lux=100.0, ghi=10.0), "lux", "not both")
     raises(lambda: step(*VIENNA, NOON, dhi=10.0), "dhi", "ghi")
     raises(lambda: step(*VIENNA, NOON, lux=-5000.0), "lux:", "global illuminance")

@@ -221,7 +221,7 @@ def controller_step(
     algorithm="fast",
     light="global",
     full_scale_lux=10_000.0,
-    decomposition="erbs",
+    decomposition=None,
     luminaire=None,
 ):
     """A daylight-following luminaire's step at each of ``times``: sky-core's
@@ -244,8 +244,9 @@ def controller_step(
     full_scale_lux : float
         The illuminance, lx, at which the luminaire gives its full output (levels clip above
         it, keeping the colour).
-    decomposition : {"erbs", "engerer2", "engerer2-global"}
-        The separation model that splits a global reading without a diffuse one.
+    decomposition : {"erbs", "engerer2", "engerer2-global"}, optional
+        The separation model that splits a global reading without a diffuse one; None:
+        sky-core's default (``controller::Settings``'s, Erbs et al. 1982 today).
     luminaire : four (x, y, lumens) tuples, optional
         Red, green, blue and white channels: CIE 1931 chromaticity and luminous flux at full
         drive. None: sky-core's example RGBW luminaire.

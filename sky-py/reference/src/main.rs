@@ -155,18 +155,21 @@ fn step_case(case: &Value) -> Outcome {
         "sky" => Light::Sky,
         other => return Err(BadCase(format!("light {other}"))),
     };
-    let decomposition = match text(case, "decomposition")? {
-        "erbs" => Decomposition::Erbs,
-        "engerer2" => Decomposition::Engerer2,
-        "engerer2-global" => Decomposition::Engerer2Global,
-        other => return Err(BadCase(format!("decomposition {other}"))),
+    let decomposition = match case["decomposition"].as_str() {
+        None => Decomposition::default(),
+        Some("erbs") => Decomposition::Erbs,
+        Some("engerer2") => Decomposition::Engerer2,
+        Some("engerer2-global") => Decomposition::Engerer2Global,
+        Some(other) => return Err(BadCase(format!("decomposition {other}"))),
     };
+    #[allow(clippy::needless_update)] // sky-core's settings grow: the site's parameters
     let settings = Settings {
         aerosol_optical_depth: num32(case, "aod")?,
         light,
         full_scale_lux: num32(case, "full_scale_lux")?,
         sun: algorithm(case)?,
         decomposition,
+        ..Settings::default()
     };
     let m = &case["measurement"];
     let measurement = if m.is_null() {
