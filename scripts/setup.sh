@@ -62,6 +62,13 @@ if [ -z "$node_version" ] || ! version_at_least "$node_version" "$node_min"; the
   need_apt+=(nodejs)
 fi
 command -v npm >/dev/null || need_apt+=(npm)
+# Python for the skymodels wheel (scripts/python.sh): python3 >= 3.9 with venv and pip.
+python_min=3.9
+python_version=$(version_of python3 --version)
+if [ -z "$python_version" ] || ! version_at_least "$python_version" "$python_min"; then
+  need_apt+=(python3)
+fi
+python3 -c 'import ensurepip, venv' 2>/dev/null || need_apt+=(python3-venv)
 
 qemu_libs=(libaio1 libbpf1 libcapstone4 libfdt1 libfuse3-3 libibverbs1 libnuma1 libpixman-1-0
   libpmem1 librdmacm1 libslirp0 liburing2 libvdeplug2 libglib2.0-0 libgnutls30 libsasl2-2
@@ -133,6 +140,22 @@ if [ "$("$cargo_fuzz" --version 2>/dev/null)" != "cargo-fuzz $fuzz_version" ]; t
   exit 1
 fi
 
+# The Python build and test tools (scripts/python.sh), in a virtual environment of their own,
+# .tools/python: maturin builds the skymodels wheel, pytest runs its tests (in a fresh virtual
+# environment with the wheel, scripts/python.sh). An older version found is upgraded.
+py_tools="$tools/python"
+maturin_min=1.16.0
+pytest_min=8.0.0
+[ -x "$py_tools/bin/python" ] || python3 -m venv "$py_tools"
+for need in "maturin $maturin_min" "pytest $pytest_min"; do
+  set -- $need
+  have=$(version_of "$py_tools/bin/python" -m "$1" --version)
+  if [ -z "$have" ] || ! version_at_least "$have" "$2"; then
+    echo "setup: pip install $1>=$2 into .tools/python (found ${have:-none})"
+    "$py_tools/bin/python" -m pip install -q --disable-pip-version-check --upgrade "$1>=$2"
+  fi
+done
+
 # playwright-core drives Debian's chromium; it must never download a browser of its own.
 export PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1
 stamp="$root/sky-wasm/node_modules/.package-lock.stamp"
@@ -148,3 +171,5 @@ fi
 "$cargo_fuzz" --version
 /usr/bin/chromium --version 2>/dev/null | head -n 1
 /usr/bin/rustc --version
+"$py_tools/bin/python" -m maturin --version
+"$py_tools/bin/python" -m pytest --version

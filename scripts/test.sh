@@ -19,15 +19,18 @@
 #          errors, images), node tests of its JavaScript surface, the demos' browser tests and
 #          every GPU shader against sky-core (WebGL2 and WebGPU on SwiftShader) in Debian's
 #          chromium, and the npm tarball installed into a scratch project (scripts/wasm.sh test)
+#   python: the skymodels wheel (sky-py, PyO3 + maturin, abi3) built, installed into a fresh
+#          virtual environment with its declared dependencies only, and its pytest suite run
+#          there against sky-core's own values (scripts/python.sh test)
 #
 # Two lanes run side by side on the machine's cores: the host lane (clippy, doc, the workspace
 # tests, micromath, publish, doc blocks) in target/debug and target/release, and the other lane
-# (setup, cross, wasm, fuzz; the host lane needs nothing setup installs, so it starts at once)
-# in target/cross, target/wasm and fuzz/target. They share no build directory,
-# so neither waits for the other's cargo lock, and each fills the other's single-threaded
-# stretches (link-time optimisation, qemu, fuzzing, the browser). The other lane's output is
-# printed when it ends; the first failure in either lane stops both. Each step's time is
-# printed at the end (docs/testing.md has a run's figures).
+# (setup, cross, wasm, fuzz, python; the host lane needs nothing setup installs, so it starts at
+# once) in target/cross, target/wasm, fuzz/target and target/python. They share no build
+# directory, so neither waits for the other's cargo lock, and each fills the other's
+# single-threaded stretches (link-time optimisation, qemu, fuzzing, the browser). The other
+# lane's output is printed when it ends; the first failure in either lane stops both. Each
+# step's time is printed at the end (docs/testing.md has a run's figures).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
@@ -100,13 +103,15 @@ fmt() {
 
 # The lane beside the host's: each of its steps has its own build directory.
 other_lane() {
-  step other "setup: what the cross, wasm and fuzz steps need (apt packages, qemu, the cargo-installed tools, npm packages)" \
+  step other "setup: what the cross, wasm, fuzz and python steps need (apt packages, qemu, the cargo-installed tools, npm packages, maturin and pytest)" \
     scripts/setup.sh
   step other "cross targets and firmware under qemu" scripts/cross.sh
   step other "sky-wasm: wasm build, wasm-bindgen tests and node tests, browser tests of the demo" \
     scripts/wasm.sh test
   step other "coverage-guided fuzzing (libFuzzer): every decoder of outside input, 25 s each" \
     scripts/fuzz.sh 25
+  step other "skymodels: the Python wheel (abi3), in a fresh virtual environment, against sky-core" \
+    scripts/python.sh test
 }
 
 step host "cargo fmt --check (the workspace, and the firmware outside it)" fmt
@@ -148,12 +153,12 @@ step host "cargo publish --dry-run: sky-core, sky-gpu and sky-train package and 
   cargo publish --workspace --dry-run --locked --allow-dirty "${dev_profile[@]}"
 step host "the sh and toml blocks of README.md and docs/ run as written" scripts/doc-blocks.sh
 
-printf '\n==> the host lane passed at %d s; waiting for the other lane (setup, cross, wasm, fuzz)\n' \
+printf '\n==> the host lane passed at %d s; waiting for the other lane (setup, cross, wasm, fuzz, python)\n' \
   "$(($(date +%s) - start))"
 lane_status=0
 wait "$lane_pid" || lane_status=$?
 lane_pid=
-printf '\n==> the other lane: setup, cross, wasm, fuzz (its output, in order)\n'
+printf '\n==> the other lane: setup, cross, wasm, fuzz, python (its output, in order)\n'
 cat "$lane_log"
 if [ "$lane_status" -ne 0 ]; then
   printf '\nFAIL: the other lane (above), exit status %d\n' "$lane_status" >&2

@@ -26,6 +26,8 @@ pub mod pages {
     pub mod gpu {}
     #[doc = include_str!("../../docs/performance.md")]
     pub mod performance {}
+    #[doc = include_str!("../../docs/python.md")]
+    pub mod python {}
     #[doc = include_str!("../../docs/sh.md")]
     pub mod sh {}
     #[doc = include_str!("../../docs/sh_errors.md")]
