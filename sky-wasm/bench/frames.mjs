@@ -1,7 +1,9 @@
 // Frame times of the wasm builds that scripts/wasm.sh bench makes (opt-level 3 or "s", with or
 // without simd128), measured in node's V8 in one run, round-robin so that a shared machine's
 // load falls on every build alike. Prints ms per 512 × 512 fisheye frame (renderSrgb) and
-// ratios against the first build, the one the site ships.
+// ratios against the first build, the one the site ships; and µs per sky built (the constructor,
+// which a page calls whenever the sun or the atmosphere moves). Builds of fewer models (the
+// neural-only build) are measured on the models they have.
 //
 // Usage: node bench/frames.mjs NAME=PATH/sky_wasm.js ...
 import { createRequire } from "node:module";
@@ -16,33 +18,56 @@ const builds = process.argv.slice(2).map((arg) => {
   return { name, api, bytes, renderer: api.Renderer.fisheye(512, 512) };
 });
 const D = Math.PI / 180;
+// Each model by its constructor's name and arguments (the sun's azimuth `a` moves a degree a
+// round); a build without the constructor (a build of fewer models) is left out of its lines.
 const models = {
-  preetham: (api, a) => api.Sky.preetham(40 * D, a, 3),
-  "neural (preetham weights)": (api, a) => api.Sky.neural("preetham", 40 * D, a, 3),
-  "aoas physical": (api, a) => api.Sky.aoasWithSun("physical", 40 * D, a),
-  "daylight (sun 50° up)": (api, a) => api.Sky.daylight(40 * D, a, 0.43),
-  "daylight (blend, 2° up)": (api, a) => api.Sky.daylight(88 * D, a, 0.43),
+  preetham: ["preetham", (a) => [40 * D, a, 3]],
+  "neural (preetham weights)": ["neural", (a) => ["preetham", 40 * D, a, 3]],
+  "aoas physical": ["aoasWithSun", (a) => ["physical", 40 * D, a]],
+  "sh (7 bands)": ["sh", (a) => [40 * D, a, 3, 7]],
+  "daylight (sun 50° up)": ["daylight", (a) => [40 * D, a, 0.43]],
+  "daylight (blend, 2° up)": ["daylight", (a) => [88 * D, a, 0.43]],
 };
 const out = new Uint8ClampedArray(512 * 512 * 4);
 const ROUNDS = 15;
+// Skies built per timed construction: the constructors take microseconds.
+const SKIES = 200;
 const median = (xs) => [...xs].sort((x, y) => x - y)[xs.length >> 1];
 
-for (const b of builds) console.log(`${b.name.padEnd(22)} ${(b.bytes / 1000).toFixed(1)} KB`);
-for (const [model, make] of Object.entries(models)) {
-  const times = builds.map(() => []);
+// times[k]: the round-robin measurements of builds[k] (null for a build without the model).
+function roundRobin(has, measure) {
+  const times = builds.map((b) => (has(b) ? [] : null));
   for (let round = 0; round < ROUNDS; round++) {
-    builds.forEach((b, k) => {
-      const sky = make(b.api, round * D);
-      const t0 = performance.now();
-      b.renderer.renderSrgb(sky, out, sky.autoExposure());
-      times[k].push(performance.now() - t0);
-      sky.free();
-    });
+    builds.forEach((b, k) => times[k]?.push(measure(b, round)));
   }
-  const base = median(times[0]);
+  return times;
+}
+
+function print(label, unit, times) {
+  const first = times.findIndex((t) => t);
+  const base = median(times[first]);
   builds.forEach((b, k) => {
-    const ms = median(times[k]);
-    console.log(`${model.padEnd(26)} ${b.name.padEnd(22)} ${ms.toFixed(2).padStart(7)} ms/frame  ` +
-      `${(base / ms).toFixed(2)}x vs ${builds[0].name}`);
+    if (!times[k]) return;
+    const v = median(times[k]);
+    console.log(`${label.padEnd(34)} ${b.name.padEnd(22)} ${v.toFixed(2).padStart(7)} ${unit}  ` +
+      `${(base / v).toFixed(2)}x vs ${builds[first].name}`);
   });
+}
+
+for (const b of builds) console.log(`${b.name.padEnd(22)} ${(b.bytes / 1000).toFixed(1)} KB`);
+for (const [model, [ctor, args]] of Object.entries(models)) {
+  const has = (b) => typeof b.api.Sky[ctor] === "function";
+  print(model, "ms/frame", roundRobin(has, (b, round) => {
+    const sky = b.api.Sky[ctor](...args(round * D));
+    const t0 = performance.now();
+    b.renderer.renderSrgb(sky, out, sky.autoExposure());
+    const ms = performance.now() - t0;
+    sky.free();
+    return ms;
+  }));
+  print(`${model}, sky built`, "µs/sky  ", roundRobin(has, (b, round) => {
+    const t0 = performance.now();
+    for (let k = 0; k < SKIES; k++) b.api.Sky[ctor](...args((round + k / SKIES) * D)).free();
+    return ((performance.now() - t0) * 1000) / SKIES;
+  }));
 }

@@ -1,22 +1,32 @@
-//! The clear-sky daylight of one UTC day at a site, as typed arrays: sky-core's
-//! [`Daylight`] at the sun position the controller computes
-//! ([`Settings::sun`](sky_core::controller::Settings)'s default algorithm), one call per day.
+//! The clear-sky daylight of one UTC day at a site, as typed arrays:
+//! [sky-core's `Daylight`](sky_core::daylight::Daylight) at the sun position the controller computes
+//! ([`Settings::sun`](sky_core::controller::Settings)'s default algorithm), one call per day
+//! (feature `daylight-day`); and the daylight's range of aerosol optical depth (features
+//! `daylight` and `daylight-day`).
 
-use sky_core::SkyError;
-use sky_core::controller::Settings;
-use sky_core::daylight::{self, Daylight};
-use sky_core::solar::{Site, UtcTime};
+use sky_core::daylight;
+#[cfg(feature = "daylight-day")]
+use sky_core::{
+    SkyError,
+    controller::Settings,
+    daylight::Daylight,
+    solar::{Site, UtcTime},
+};
 use wasm_bindgen::prelude::*;
 
+#[cfg(feature = "daylight-day")]
 use crate::js_error;
 
 /// Seconds in a UTC day (leap seconds are not represented).
+#[cfg(feature = "daylight-day")]
 const DAY_SECONDS: f64 = 86_400.0;
 
 /// The last whole second of a UTC day, 23:59:59.
+#[cfg(feature = "daylight-day")]
 const LAST_SECOND: f64 = DAY_SECONDS - 1.0;
 
 /// The smallest step between samples, seconds: at most 86,400 samples a day.
+#[cfg(feature = "daylight-day")]
 const MIN_STEP_SECONDS: f64 = 1.0;
 
 /// The clear-sky daylight at times of one UTC day at one site: per sample the sun's elevation,
@@ -31,6 +41,7 @@ const MIN_STEP_SECONDS: f64 = 1.0;
 /// console.log(day.globalLux[noon], day.cctK[noon], day.melanopicEdiLux[noon]);
 /// day.free();
 /// ```
+#[cfg(feature = "daylight-day")]
 #[wasm_bindgen]
 #[derive(Debug, Clone, Default)]
 pub struct DaylightDay {
@@ -41,6 +52,7 @@ pub struct DaylightDay {
 }
 
 /// `value` in `[min, max]` (NaN is not), else sky-core's out-of-range error naming `parameter`.
+#[cfg(feature = "daylight-day")]
 #[allow(clippy::cast_possible_truncation)] // seconds of a day, for the message
 fn check(parameter: &'static str, value: f64, min: f64, max: f64) -> Result<f64, SkyError> {
     if (min..=max).contains(&value) {
@@ -55,6 +67,7 @@ fn check(parameter: &'static str, value: f64, min: f64, max: f64) -> Result<f64,
     }
 }
 
+#[cfg(feature = "daylight-day")]
 #[wasm_bindgen]
 impl DaylightDay {
     /// The daylight on `year-month-day` (UTC) from `start` to `end` seconds after 0:00 UTC

@@ -25,17 +25,55 @@
 //! AOAS.
 //! The values are sky-core's, bit for bit: the same code compiled for wasm32 (the wasm-bindgen
 //! tests in `tests/wasm.rs` check every model against the native build to 1e-6 relative).
+//!
+//! # Features
+//!
+//! Each model is a feature, so that a page's build can leave out the models it does not draw
+//! (the .wasm's size per build: `docs/browser.md`, "Size"); all are on by default.
+//!
+//! | feature | what it adds |
+//! |---|---|
+//! | `preetham` | [`Sky::preetham`] |
+//! | `neural` | [`Sky::neural`] (both shipped weight sets) |
+//! | `neural-file` | [`Sky::neural_from_bytes`] (a weight file: sky-core's decoder; needs `neural`) |
+//! | `aoas` | [`Sky::aoas`], [`Sky::aoas_with_sun`], [`aoas_presets`] |
+//! | `sh` | [`Sky::sh`], [`Sky::sh_unfiltered`], [`Sky::irradiance`], [`Renderer::sphere`] |
+//! | `daylight` | [`Sky::daylight`] and the optical depth range (`daylightMinAod`, ...) |
+//! | `daylight-day` | `DaylightDay` (the day's daylight) and the optical depth range |
+//! | `sun-position` | `SunPosition` (NREL's SPA) |
+//!
+//! A build needs at least one model (`preetham`, `neural`, `aoas`, `sh` or `daylight`).
 
+#[cfg(not(any(
+    feature = "preetham",
+    feature = "neural",
+    feature = "aoas",
+    feature = "sh",
+    feature = "daylight"
+)))]
+compile_error!("sky-wasm needs at least one model feature: preetham, neural, aoas, sh or daylight");
+
+#[cfg(any(feature = "daylight", feature = "daylight-day"))]
 pub mod daylight;
 pub mod number;
 pub mod projection;
 pub mod srgb8;
 
+#[cfg(feature = "neural")]
+use sky_core::NeuralSky;
+#[cfg(feature = "preetham")]
+use sky_core::PreethamSky;
+#[cfg(feature = "aoas")]
 use sky_core::aoas::{AoasSky, DayCycle, Preset, Scattering, Style};
+#[cfg(feature = "daylight")]
 use sky_core::daylight::{Daylight, DaylightSky};
+#[cfg(feature = "neural")]
 use sky_core::neural::{NeuralWeights, pretrained};
+#[cfg(feature = "sh")]
 use sky_core::sh::ShSky;
-use sky_core::{NeuralSky, PreethamSky, Sun, Vec3, color, geom, solar};
+#[cfg(feature = "sun-position")]
+use sky_core::solar;
+use sky_core::{Sun, Vec3, color, geom};
 use wasm_bindgen::prelude::*;
 
 use projection::{Kind, Projection};
@@ -51,7 +89,15 @@ const MIDDLE_GREY: f32 = 0.18;
 /// [`Sky::auto_exposure`]: 32 × 32 gives 812 directions.
 const EXPOSURE_GRID: u32 = 32;
 
-use number::{display_error, js_error};
+use number::{js_error, push_decimal};
+
+/// The allocator of the .wasm: lol_alloc's free list (first fit; a freed block merges with its
+/// free neighbours), about 1 KB of code where std's dlmalloc takes 5 KB (docs/browser.md,
+/// "Size"). The pages allocate a few buffers per image and per sky, never per pixel.
+#[cfg(target_arch = "wasm32")]
+#[global_allocator]
+static ALLOCATOR: lol_alloc::LockedAllocator<lol_alloc::FreeListAllocator> =
+    lol_alloc::LockedAllocator::new(lol_alloc::FreeListAllocator::new());
 
 /// The model behind a [`Sky`].
 // One per JavaScript `Sky`: 424 bytes are nothing to save; the AOAS sky (its style holds up to 64
@@ -59,10 +105,15 @@ use number::{display_error, js_error};
 #[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone)]
 enum Model {
+    #[cfg(feature = "preetham")]
     Preetham(PreethamSky),
+    #[cfg(feature = "neural")]
     Neural(NeuralSky),
+    #[cfg(feature = "aoas")]
     Aoas(Box<AoasSky>),
+    #[cfg(feature = "sh")]
     Sh(Box<ShSky>),
+    #[cfg(feature = "daylight")]
     Daylight(Box<DaylightSky>),
 }
 
@@ -80,14 +131,19 @@ impl Model {
     #[inline(never)]
     fn rgb_batch(&self, dirs: &[Vec3], out: &mut [Vec3]) {
         match self {
+            #[cfg(feature = "preetham")]
             Self::Preetham(s) => s.rgb_batch(dirs, out),
+            #[cfg(feature = "neural")]
             Self::Neural(s) => s.rgb_batch(dirs, out),
+            #[cfg(feature = "aoas")]
             Self::Aoas(s) => s.rgb_batch(dirs, out),
+            #[cfg(feature = "sh")]
             Self::Sh(s) => {
                 for (o, d) in out.iter_mut().zip(dirs) {
                     *o = s.radiance(*d);
                 }
             }
+            #[cfg(feature = "daylight")]
             Self::Daylight(s) => s.rgb_batch(dirs, out),
         }
     }
@@ -103,6 +159,7 @@ pub struct Sky {
 
 #[wasm_bindgen]
 impl Sky {
+    #[cfg(feature = "preetham")]
     /// The Preetham sky (Perez distribution with Preetham's coefficients) for a sun at
     /// `sun_zenith` in [0, π/2] and `sun_azimuth` (radians) and `turbidity` in [2, 6].
     ///
@@ -117,6 +174,7 @@ impl Sky {
         })
     }
 
+    #[cfg(feature = "neural")]
     /// The neural sky with the shipped weights `weights` ("preetham": trained on the Preetham
     /// sky, turbidity 2-6; "hosek": on the Hosek-Wilkie sky, turbidity 1-10), for a sun at
     /// `sun_zenith` in [0, π/2] and `sun_azimuth` (radians) and `turbidity`.
@@ -133,14 +191,20 @@ impl Sky {
             "preetham" => &pretrained::PREETHAM,
             "hosek" => &pretrained::HOSEK,
             other => {
-                return Err(JsError::new(&format!(
-                    "weights = \"{other}\" is not a shipped neural sky (\"preetham\" or \"hosek\")"
-                )));
+                return Err(JsError::new(
+                    &[
+                        "weights = \"",
+                        other,
+                        "\" is not a shipped neural sky (\"preetham\" or \"hosek\")",
+                    ]
+                    .concat(),
+                ));
             }
         };
         Self::neural_with(weights, sun_zenith, sun_azimuth, turbidity)
     }
 
+    #[cfg(feature = "neural-file")]
     /// The neural sky of a weight file (sky-core's format, as `sky-train train` writes it) for
     /// a sun at `sun_zenith` and `sun_azimuth` (radians) and `turbidity`.
     ///
@@ -153,10 +217,11 @@ impl Sky {
         sun_azimuth: f32,
         turbidity: f32,
     ) -> Result<Sky, JsError> {
-        let weights = NeuralWeights::<12>::decode(bytes).map_err(display_error)?;
+        let weights = NeuralWeights::<12>::decode(bytes).map_err(number::weights_error)?;
         Self::neural_with(&weights, sun_zenith, sun_azimuth, turbidity)
     }
 
+    #[cfg(feature = "neural")]
     fn neural_with(
         weights: &NeuralWeights,
         sun_zenith: f32,
@@ -171,6 +236,7 @@ impl Sky {
         })
     }
 
+    #[cfg(feature = "aoas")]
     /// The AOAS sky (O'Neil's single scattering with seed 004's aesthetic principles) of the
     /// style preset `preset` (see [`aoas_presets`]), with the preset's own sun.
     ///
@@ -180,6 +246,7 @@ impl Sky {
         Self::aoas_sky(&Self::preset(preset)?)
     }
 
+    #[cfg(feature = "aoas")]
     /// The AOAS sky of the style preset `preset` with the sun moved to `sun_zenith` in
     /// [0, π/2] and `sun_azimuth` (radians).
     ///
@@ -192,15 +259,23 @@ impl Sky {
         Self::aoas_sky(&style)
     }
 
+    #[cfg(feature = "aoas")]
     fn preset(name: &str) -> Result<Style, JsError> {
         Preset::from_name(name).map(Preset::style).ok_or_else(|| {
-            JsError::new(&format!(
-                "preset = \"{name}\" is not an AOAS style preset (one of: {})",
-                aoas_presets().join(", ")
-            ))
+            JsError::new(
+                &[
+                    "preset = \"",
+                    name,
+                    "\" is not an AOAS style preset (one of: ",
+                    &aoas_presets().join(", "),
+                    ")",
+                ]
+                .concat(),
+            )
         })
     }
 
+    #[cfg(feature = "aoas")]
     fn aoas_sky(style: &Style) -> Result<Sky, JsError> {
         let sky = AoasSky::new(&Scattering::default(), style).map_err(js_error)?;
         Ok(Self {
@@ -209,6 +284,7 @@ impl Sky {
         })
     }
 
+    #[cfg(feature = "sh")]
     /// The spherical-harmonics lighting of the Preetham sky (seed 001: polynomial tables in sun
     /// zenith and turbidity, ringing filter, rotation to the sun's azimuth) with `bands` bands
     /// (1 to 7), for a sun at `sun_zenith` in [0, π/2] and `sun_azimuth` (radians) and
@@ -231,6 +307,7 @@ impl Sky {
         })
     }
 
+    #[cfg(feature = "sh")]
     /// The spherical-harmonics lighting of [`sh`](Self::sh) without the ringing filter of
     /// seed 001, eq. 5: the plain fitted coefficients, whose first three bands are the
     /// radiance coefficients a three.js `LightProbe` takes (its irradiance needs no filter).
@@ -252,6 +329,7 @@ impl Sky {
         })
     }
 
+    #[cfg(feature = "daylight")]
     /// The sky of sky-core's clear-sky daylight (the physical atmosphere's radiance through
     /// three neural networks, `DaylightSky`) for a sun at `sun_zenith` in [0, π] (below the
     /// horizon too: twilight; beyond 108°, the sun 18° down, it draws the 108° sky) and
@@ -282,17 +360,34 @@ impl Sky {
     /// # Errors
     /// An AOAS style with cloud noise, cloud shapes or ambiguity (the shader has none).
     #[wasm_bindgen(js_name = shaderParams)]
+    #[cfg_attr(
+        not(any(
+            feature = "preetham",
+            feature = "neural",
+            feature = "aoas",
+            feature = "sh"
+        )),
+        allow(unused_imports, unreachable_code) // the daylight sky alone: no shader
+    )]
     pub fn shader_params(&self) -> Result<Vec<f32>, JsError> {
         use sky_gpu::models;
         Ok(match &self.model {
+            #[cfg(feature = "preetham")]
             Model::Preetham(s) => models::preetham::params(s).to_vec(),
+            #[cfg(feature = "neural")]
             Model::Neural(s) => models::neural::params(s),
-            Model::Aoas(s) => models::aoas::params(s).map_err(display_error)?.to_vec(),
+            #[cfg(feature = "aoas")]
+            Model::Aoas(s) => models::aoas::params(s)
+                .map_err(|e| JsError::new(e.0))?
+                .to_vec(),
+            #[cfg(feature = "sh")]
             Model::Sh(s) => models::sh::params(s).to_vec(),
+            #[cfg(feature = "daylight")]
             Model::Daylight(s) => models::daylight::params(s),
         })
     }
 
+    #[cfg(feature = "sh")]
     /// The irradiance of an SH sky on a surface whose normal has zenith angle `normal_zenith`
     /// and azimuth `normal_azimuth` (radians): sky-core's `ShSky::irradiance`, linear sRGB on
     /// the sky's radiance scale times steradians (lux scale for Preetham).
@@ -300,6 +395,7 @@ impl Sky {
     /// # Errors
     /// A sky that is not an SH sky.
     pub fn irradiance(&self, normal_zenith: f32, normal_azimuth: f32) -> Result<Vec<f32>, JsError> {
+        #[allow(unreachable_patterns)] // a build with the SH sky alone
         match &self.model {
             Model::Sh(s) => Ok(s
                 .irradiance(geom::direction(normal_zenith, normal_azimuth))
@@ -316,10 +412,15 @@ impl Sky {
     #[must_use]
     pub fn model(&self) -> String {
         match self.model {
+            #[cfg(feature = "preetham")]
             Model::Preetham(_) => "preetham",
+            #[cfg(feature = "neural")]
             Model::Neural(_) => "neural",
+            #[cfg(feature = "aoas")]
             Model::Aoas(_) => "aoas",
+            #[cfg(feature = "sh")]
             Model::Sh(_) => "sh",
+            #[cfg(feature = "daylight")]
             Model::Daylight(_) => "daylight",
         }
         .into()
@@ -387,6 +488,7 @@ impl Sky {
     }
 }
 
+#[cfg(feature = "aoas")]
 /// The AOAS style presets' names, in the order of the gallery's strip (`sky-train gallery`, docs/aoas_presets.png).
 #[wasm_bindgen(js_name = aoasPresets)]
 #[must_use]
@@ -394,6 +496,7 @@ pub fn aoas_presets() -> Vec<String> {
     Preset::ALL.iter().map(|p| p.name().to_owned()).collect()
 }
 
+#[cfg(feature = "sun-position")]
 /// The sun's position at a UTC date and time seen from a place on the Earth: sky-core's
 /// [`solar`] (NREL's Solar Position Algorithm, within 0.01° of pvlib's).
 ///
@@ -408,6 +511,7 @@ pub struct SunPosition {
     position: solar::SunPosition,
 }
 
+#[cfg(feature = "sun-position")]
 #[wasm_bindgen]
 impl SunPosition {
     /// The sun at `year-month-day hour:minute:second` UTC (years 1-2999; `second` in [0, 60))
@@ -501,6 +605,7 @@ impl Renderer {
         Self::new(Kind::Panorama, width, height)
     }
 
+    #[cfg(feature = "sh")]
     /// A `size` × `size` image of a white diffuse sphere (albedo 1) lit by an SH sky
     /// ([`Sky::sh`]), seen from the south looking north: east right, the zenith up. Each pixel
     /// is the sphere's radiance E(n)/π for its normal n, with E sky-core's SH irradiance
@@ -541,14 +646,23 @@ impl Renderer {
     fn check_len(&self, len: u32, per_pixel: usize, what: &str) -> Result<(), JsError> {
         let want = self.projection.pixel_count() * per_pixel;
         if len as usize == want {
-            Ok(())
-        } else {
-            Err(JsError::new(&format!(
-                "{what} has length {len}, but a {}x{} image needs {want} ({per_pixel} per pixel)",
-                self.width(),
-                self.height()
-            )))
+            return Ok(());
         }
+        // The message by hand: `format!` would link core::fmt's integer formatting.
+        let mut text = String::from(what);
+        let numbers = [
+            (" has length ", len as usize),
+            (", but a ", self.width() as usize),
+            ("x", self.height() as usize),
+            (" image needs ", want),
+            (" (", per_pixel),
+        ];
+        for (words, n) in numbers {
+            text.push_str(words);
+            push_decimal(&mut text, n);
+        }
+        text.push_str(" per pixel)");
+        Err(JsError::new(&text))
     }
 
     /// Renders `sky` as 8-bit sRGB RGBA into `out` (a `Uint8ClampedArray` of width × height × 4
@@ -565,7 +679,9 @@ impl Renderer {
         exposure: f32,
     ) -> Result<(), JsError> {
         self.check_len(out.length(), 4, "out")?;
+        #[allow(unreachable_patterns)] // a build with the SH sky alone
         let source = match (&sky.model, self.projection.kind()) {
+            #[cfg(feature = "sh")]
             (Model::Sh(sh), Kind::Sphere) => Source::LitSphere(sh),
             (_, Kind::Sphere) => {
                 return Err(JsError::new(
@@ -631,6 +747,7 @@ enum Source<'a> {
     /// |a − b| per channel.
     Difference(&'a Model, &'a Model),
     /// A white diffuse sphere's radiance, E(n)/π, lit by the SH sky.
+    #[cfg(feature = "sh")]
     LitSphere(&'a ShSky),
 }
 
@@ -654,6 +771,7 @@ impl Renderer {
                         *x = (*x - *y).abs();
                     }
                 }
+                #[cfg(feature = "sh")]
                 Source::LitSphere(sh) => {
                     for (o, n) in rgb.iter_mut().zip(dirs) {
                         *o = sh.irradiance(*n) * core::f32::consts::FRAC_1_PI;

@@ -2,10 +2,12 @@
 //! engine (`js/f32-text.js`, a wasm-bindgen snippet beside the bindings): `core::fmt`'s float
 //! formatting (Grisu with the Dragon fallback, their tables) is 8.6 KB of the .wasm that only
 //! error messages used, and the same in Rust through `js_sys` 4 KB (docs/browser.md, "Size").
-
-use core::fmt;
+//! Integers are written digit by digit, and no message goes through `format!` or `Display`: the
+//! .wasm links none of `core::fmt`'s formatting.
 
 use sky_core::SkyError;
+#[cfg(feature = "neural-file")]
+use sky_core::neural::WeightsError;
 use wasm_bindgen::JsError;
 use wasm_bindgen::prelude::wasm_bindgen;
 
@@ -25,14 +27,24 @@ extern "C" {
 pub(crate) fn js_error(e: SkyError) -> JsError {
     let mut text = String::new();
     // Writing into a String cannot fail.
-    let _ = e.write_message(&mut text, &|out: &mut String, v| {
-        out.push_str(&f32_text(v));
-        Ok(())
-    });
+    let _ = e.write_message(&mut text, &|out, v| out.write_str(&f32_text(v)));
     JsError::new(&text)
 }
 
-/// An error of another type (no numbers to format) as a JavaScript `Error` with its message.
-pub(crate) fn display_error(e: impl fmt::Display) -> JsError {
-    JsError::new(&e.to_string())
+/// A weight file's error as a JavaScript `Error` with sky-core's message.
+#[cfg(feature = "neural-file")]
+pub(crate) fn weights_error(e: WeightsError) -> JsError {
+    let mut text = String::new();
+    // Writing into a String cannot fail.
+    let _ = e.write_message(&mut text);
+    JsError::new(&text)
+}
+
+/// Appends `n` in decimal, as its `Display` does.
+pub(crate) fn push_decimal(out: &mut String, n: usize) {
+    if n >= 10 {
+        push_decimal(out, n / 10);
+    }
+    #[allow(clippy::cast_possible_truncation)] // a digit
+    out.push(char::from(b'0' + (n % 10) as u8));
 }

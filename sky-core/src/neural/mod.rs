@@ -73,6 +73,11 @@ struct SkyInputs {
 
 impl SkyInputs {
     /// `turbidity` is the turbidity and its trained range, or `None` for networks without it.
+    ///
+    /// Never inlined, like the other constructor helpers here: once per sky, so compiled
+    /// once at this crate's optimisation level rather than into every caller (the .wasm's
+    /// kernels are built for speed, its constructors need not be).
+    #[inline(never)]
     fn new(
         sun_zenith_range: (f32, f32),
         turbidity: Option<(f32, (f32, f32))>,
@@ -154,6 +159,50 @@ pub struct NeuralSky<const H: usize = 12> {
     half_scale: [f32; OUTPUTS],
 }
 
+/// The first layer of a network folded for the sky of `inputs` (see [`FoldedNetwork`]): for
+/// each hidden neuron (`hidden`, `hidden_bias`; the inputs' offsets `off` and scales `sc`)
+/// its `constant`, `coeff_x`, `coeff_y`, `coeff_z` and `coeff_d`. Over slices, not generic over
+/// H, and never inlined (see [`SkyInputs::new`]).
+#[inline(never)]
+fn fold_neurons(
+    inputs: &SkyInputs,
+    hidden: &[[f32; INPUTS]],
+    hidden_bias: &[f32],
+    off: &[f32; INPUTS],
+    sc: &[f32; INPUTS],
+    [constant, coeff_x, coeff_y, coeff_z, coeff_d]: [&mut [f32]; 5],
+) {
+    let &SkyInputs {
+        sqrt_t,
+        theta_s,
+        sin_r,
+        cos_r,
+    } = inputs;
+    let neurons = hidden
+        .iter()
+        .zip(hidden_bias)
+        .zip(constant.iter_mut().zip(coeff_x));
+    for (((w, bias), (c, x)), (y, (z, d))) in
+        neurons.zip(coeff_y.iter_mut().zip(coeff_z.iter_mut().zip(coeff_d)))
+    {
+        // Scaled weights: u_k = (V_k − off_k) sc_k, so w_k u_k = (w_k sc_k) V_k − w_k sc_k off_k.
+        let ws: [f32; INPUTS] = core::array::from_fn(|k| w[k] * sc[k]);
+        let shift: f32 = (0..INPUTS).map(|k| ws[k] * off[k]).sum();
+        *c = bias + ws[0] * sqrt_t + ws[1] * theta_s - shift;
+        // v_x = v_x0 cos r + v_y0 sin r, v_y = v_y0 cos r − v_x0 sin r (eq. 10).
+        *x = ws[2] * cos_r - ws[3] * sin_r;
+        *y = ws[2] * sin_r + ws[3] * cos_r;
+        *z = ws[4];
+        *d = ws[5];
+    }
+}
+
+/// Whether every value of every group is finite. Never inlined (see [`SkyInputs::new`]).
+#[inline(never)]
+fn all_finite(groups: &[&[f32]]) -> bool {
+    groups.iter().all(|g| g.iter().all(|x| x.is_finite()))
+}
+
 impl<const H: usize> NeuralSky<H> {
     /// The sky of `weights` for `sun` and `turbidity`.
     ///
@@ -167,20 +216,13 @@ impl<const H: usize> NeuralSky<H> {
     /// or so large that the network folded for this sky overflows f32 (a decoded weight file
     /// has finite values; weights built by hand may not).
     pub fn new(weights: &NeuralWeights<H>, sun: Sun, turbidity: f32) -> Result<Self, SkyError> {
-        let SkyInputs {
-            sqrt_t,
-            theta_s,
-            sin_r,
-            cos_r,
-        } = SkyInputs::new(
+        let inputs = SkyInputs::new(
             weights.sun_zenith_range,
             weights
                 .uses_turbidity
                 .then_some((turbidity, weights.turbidity_range)),
             sun,
         )?;
-        let off = &weights.input_offset;
-        let sc = &weights.input_scale;
         let mut sky = Self {
             sun: sun.direction(),
             constant: [0.0; H],
@@ -192,35 +234,37 @@ impl<const H: usize> NeuralSky<H> {
             output_bias: weights.output_bias,
             half_scale: weights.output_scale.map(|s| 0.5 * s),
         };
-        for j in 0..H {
-            let w = &weights.hidden[j];
-            // Scaled weights: u_k = (V_k − off_k) sc_k, so w_k u_k = (w_k sc_k) V_k − w_k sc_k off_k.
-            let ws: [f32; INPUTS] = core::array::from_fn(|k| w[k] * sc[k]);
-            let shift: f32 = (0..INPUTS).map(|k| ws[k] * off[k]).sum();
-            sky.constant[j] = weights.hidden_bias[j] + ws[0] * sqrt_t + ws[1] * theta_s - shift;
-            // v_x = v_x0 cos r + v_y0 sin r, v_y = v_y0 cos r − v_x0 sin r (eq. 10).
-            sky.coeff_x[j] = ws[2] * cos_r - ws[3] * sin_r;
-            sky.coeff_y[j] = ws[2] * sin_r + ws[3] * cos_r;
-            sky.coeff_z[j] = ws[4];
-            sky.coeff_d[j] = ws[5];
-        }
+        fold_neurons(
+            &inputs,
+            &weights.hidden,
+            &weights.hidden_bias,
+            &weights.input_offset,
+            &weights.input_scale,
+            [
+                &mut sky.constant,
+                &mut sky.coeff_x,
+                &mut sky.coeff_y,
+                &mut sky.coeff_z,
+                &mut sky.coeff_d,
+            ],
+        );
         // A NaN or infinity anywhere in the weights reaches one of these (0 · ∞ is NaN too).
-        let folded = [
-            &sky.constant[..],
+        if all_finite(&[
+            &sky.constant,
             &sky.coeff_x,
             &sky.coeff_y,
             &sky.coeff_z,
             &sky.coeff_d,
             &sky.output_bias,
             &sky.half_scale,
-        ];
-        let finite = |v: &[f32]| v.iter().all(|x| x.is_finite());
-        if !(folded.into_iter().all(finite) && sky.output.iter().all(|row| finite(row))) {
-            return Err(SkyError::NotFinite {
+            sky.output.as_flattened(),
+        ]) {
+            Ok(sky)
+        } else {
+            Err(SkyError::NotFinite {
                 parameter: "network weights",
-            });
+            })
         }
-        Ok(sky)
     }
 
     /// The network with everything that depends only on the sky folded into the first layer,

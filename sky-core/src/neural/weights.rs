@@ -27,6 +27,7 @@
 use core::fmt;
 
 use super::{INPUTS, OUTPUTS};
+use crate::error::{write_decimal, write_hex32};
 
 /// The file's magic number.
 pub const MAGIC: [u8; 4] = *b"SKYN";
@@ -146,41 +147,106 @@ pub enum WeightsError {
     },
 }
 
-impl fmt::Display for WeightsError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+impl WeightsError {
+    /// Writes the message (the text of [`Display`](fmt::Display)) into `out` without
+    /// `core::fmt`'s formatting machinery (integers digit by digit): a size-bound build, such
+    /// as the browser's, gets the message without linking it. (`out` is a trait object: the
+    /// message code is compiled once, in this crate.)
+    ///
+    /// ```
+    /// use sky_core::neural::WeightsError;
+    ///
+    /// let e = WeightsError::Truncated { needed: 624, got: 10 };
+    /// let mut text = String::new();
+    /// e.write_message(&mut text)?;
+    /// assert_eq!(text, "weight file truncated: 10 bytes, needs 624");
+    /// assert_eq!(text, e.to_string());
+    /// # Ok::<(), core::fmt::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// What `out` returns.
+    pub fn write_message(&self, out: &mut dyn fmt::Write) -> fmt::Result {
+        let decimal = |out: &mut dyn fmt::Write, n: usize| write_decimal(out, n as u64);
         match *self {
             Self::Truncated { needed, got } => {
-                write!(f, "weight file truncated: {got} bytes, needs {needed}")
+                out.write_str("weight file truncated: ")?;
+                decimal(out, got)?;
+                out.write_str(" bytes, needs ")?;
+                decimal(out, needed)
             }
-            Self::TrailingBytes { needed, got } => write!(
-                f,
-                "weight file has {got} bytes, {} more than its {needed}-byte shape",
-                got - needed
-            ),
-            Self::BadMagic(m) => write!(f, "not a weight file: magic {m:?}, expected \"SKYN\""),
+            Self::TrailingBytes { needed, got } => {
+                out.write_str("weight file has ")?;
+                decimal(out, got)?;
+                out.write_str(" bytes, ")?;
+                decimal(out, got.saturating_sub(needed))?;
+                out.write_str(" more than its ")?;
+                decimal(out, needed)?;
+                out.write_str("-byte shape")
+            }
+            Self::BadMagic(m) => {
+                // The magic as `{m:?}` writes it: `[83, 75, 89, 78]`.
+                out.write_str("not a weight file: magic [")?;
+                for (k, b) in m.iter().enumerate() {
+                    if k > 0 {
+                        out.write_str(", ")?;
+                    }
+                    decimal(out, usize::from(*b))?;
+                }
+                out.write_str("], expected \"SKYN\"")
+            }
             Self::UnsupportedVersion(v) => {
-                write!(
-                    f,
-                    "weight file version {v} is not supported (only {VERSION})"
-                )
+                out.write_str("weight file version ")?;
+                decimal(out, usize::from(v))?;
+                out.write_str(" is not supported (only ")?;
+                decimal(out, usize::from(VERSION))?;
+                out.write_str(")")
             }
-            Self::WrongShape { found, expected } => write!(
-                f,
-                "weight file is a {}-{}-{} network, expected {}-{}-{}",
-                found[0], found[1], found[2], expected[0], expected[1], expected[2]
-            ),
-            Self::ChecksumMismatch { stored, computed } => write!(
-                f,
-                "weight file checksum mismatch: stored {stored:#010x}, data gives {computed:#010x}"
-            ),
-            Self::NonFinite { field } => write!(f, "weight file field {field} is not finite"),
+            Self::WrongShape { found, expected } => {
+                out.write_str("weight file is a ")?;
+                for (k, n) in found
+                    .iter()
+                    .map(|&n| usize::from(n))
+                    .chain(expected)
+                    .enumerate()
+                {
+                    out.write_str(match k {
+                        0 => "",
+                        3 => " network, expected ",
+                        _ => "-",
+                    })?;
+                    decimal(out, n)?;
+                }
+                Ok(())
+            }
+            Self::ChecksumMismatch { stored, computed } => {
+                out.write_str("weight file checksum mismatch: stored ")?;
+                write_hex32(out, stored)?;
+                out.write_str(", data gives ")?;
+                write_hex32(out, computed)
+            }
+            Self::NonFinite { field } => {
+                out.write_str("weight file field ")?;
+                out.write_str(field)?;
+                out.write_str(" is not finite")
+            }
             Self::InvalidHeader { field } => {
-                write!(f, "weight file header field {field} is invalid")
+                out.write_str("weight file header field ")?;
+                out.write_str(field)?;
+                out.write_str(" is invalid")
             }
             Self::BufferTooSmall { needed } => {
-                write!(f, "output buffer too small: {needed} bytes needed")
+                out.write_str("output buffer too small: ")?;
+                decimal(out, needed)?;
+                out.write_str(" bytes needed")
             }
         }
+    }
+}
+
+impl fmt::Display for WeightsError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.write_message(f)
     }
 }
 
@@ -246,57 +312,42 @@ impl Reader<'_> {
 
     fn f32s<const N: usize>(&mut self, field: &'static str) -> Result<[f32; N], WeightsError> {
         let mut out = [0.0; N];
-        for v in &mut out {
-            *v = self.f32(field)?;
-        }
+        self.fill(&mut out, field)?;
         Ok(out)
     }
-}
 
-/// Writes little-endian values into a byte slice whose length was checked beforehand.
-struct Writer<'a> {
-    bytes: &'a mut [u8],
-    pos: usize,
-}
-
-impl Writer<'_> {
-    fn put(&mut self, src: &[u8]) {
-        if let Some(dst) = self.bytes.get_mut(self.pos..self.pos + src.len()) {
-            dst.copy_from_slice(src);
+    /// Reads `out.len()` floats into `out`. Never inlined and not generic: compiled once.
+    #[inline(never)]
+    fn fill(&mut self, out: &mut [f32], field: &'static str) -> Result<(), WeightsError> {
+        for v in out {
+            *v = self.f32(field)?;
         }
-        self.pos += src.len();
-    }
-
-    fn f32s(&mut self, values: &[f32]) {
-        for v in values {
-            self.put(&v.to_le_bytes());
-        }
+        Ok(())
     }
 }
 
-impl<const H: usize> NeuralWeights<H> {
-    /// The size of this network's weight file in bytes.
-    pub const ENCODED_LEN: usize = encoded_len(H);
+/// A weight file's header fields, checked: everything but the weights.
+struct Header {
+    flags: u8,
+    input_offset: [f32; INPUTS],
+    input_scale: [f32; INPUTS],
+    output_scale: [f32; OUTPUTS],
+    turbidity_range: (f32, f32),
+    sun_zenith_range: (f32, f32),
+    source: [u8; 32],
+    seed: u32,
+    nrmse: f32,
+}
 
-    /// The source model's name (up to the first NUL).
-    #[must_use]
-    pub fn source_name(&self) -> &str {
-        let end = self
-            .source
-            .iter()
-            .position(|&b| b == 0)
-            .unwrap_or(self.source.len());
-        core::str::from_utf8(&self.source[..end]).unwrap_or("")
-    }
-
-    /// Decodes a weight file (see the module docs for the format).
-    ///
-    /// # Errors
-    /// A [`WeightsError`] for every malformed input: truncated or overlong data, bad magic,
-    /// unknown version, layer sizes other than 6-H-3, a checksum mismatch, non-finite floats
-    /// and invalid header values.
-    pub fn decode(bytes: &[u8]) -> Result<Self, WeightsError> {
-        let needed = Self::ENCODED_LEN;
+impl Header {
+    /// Checks `bytes` as a weight file of a network with `hidden` neurons (its length, magic,
+    /// version, shape and checksum) and reads its header; returns the header and the reader at
+    /// the first weight. Not generic over the network size and never inlined, so that it is
+    /// compiled once, at this crate's optimisation level, rather than into every caller of
+    /// [`NeuralWeights::decode`] (the .wasm's code is built for speed where it draws, not here).
+    #[inline(never)]
+    fn decode(bytes: &[u8], hidden: usize) -> Result<(Self, Reader<'_>), WeightsError> {
+        let needed = encoded_len(hidden);
         if bytes.len() < HEADER_LEN.min(needed) || bytes.len() < 12 {
             return Err(WeightsError::Truncated {
                 needed,
@@ -317,11 +368,11 @@ impl<const H: usize> NeuralWeights<H> {
             usize::from(shape[0]),
             usize::from(shape[1]),
             usize::from(shape[2]),
-        ] != [INPUTS, H, OUTPUTS]
+        ] != [INPUTS, hidden, OUTPUTS]
         {
             return Err(WeightsError::WrongShape {
                 found: shape,
-                expected: [INPUTS, H, OUTPUTS],
+                expected: [INPUTS, hidden, OUTPUTS],
             });
         }
         if bytes.len() < needed {
@@ -378,30 +429,85 @@ impl<const H: usize> NeuralWeights<H> {
         }
         let seed = u32::from_le_bytes(r.take());
         let nrmse = r.f32("training NRMSE")?;
-        let mut hidden = [[0.0; INPUTS]; H];
-        for row in &mut hidden {
-            *row = r.f32s("hidden weights")?;
+        let header = Self {
+            flags,
+            input_offset,
+            input_scale,
+            output_scale,
+            turbidity_range: (tmin, tmax),
+            sun_zenith_range: (zmin, zmax),
+            source,
+            seed,
+            nrmse,
+        };
+        Ok((header, r))
+    }
+}
+
+/// Writes little-endian values into a byte slice whose length was checked beforehand.
+struct Writer<'a> {
+    bytes: &'a mut [u8],
+    pos: usize,
+}
+
+impl Writer<'_> {
+    fn put(&mut self, src: &[u8]) {
+        if let Some(dst) = self.bytes.get_mut(self.pos..self.pos + src.len()) {
+            dst.copy_from_slice(src);
         }
+        self.pos += src.len();
+    }
+
+    fn f32s(&mut self, values: &[f32]) {
+        for v in values {
+            self.put(&v.to_le_bytes());
+        }
+    }
+}
+
+impl<const H: usize> NeuralWeights<H> {
+    /// The size of this network's weight file in bytes.
+    pub const ENCODED_LEN: usize = encoded_len(H);
+
+    /// The source model's name (up to the first NUL).
+    #[must_use]
+    pub fn source_name(&self) -> &str {
+        let end = self
+            .source
+            .iter()
+            .position(|&b| b == 0)
+            .unwrap_or(self.source.len());
+        core::str::from_utf8(&self.source[..end]).unwrap_or("")
+    }
+
+    /// Decodes a weight file (see the module docs for the format).
+    ///
+    /// # Errors
+    /// A [`WeightsError`] for every malformed input: truncated or overlong data, bad magic,
+    /// unknown version, layer sizes other than 6-H-3, a checksum mismatch, non-finite floats
+    /// and invalid header values.
+    pub fn decode(bytes: &[u8]) -> Result<Self, WeightsError> {
+        let (header, mut r) = Header::decode(bytes, H)?;
+        let mut hidden = [[0.0; INPUTS]; H];
+        r.fill(hidden.as_flattened_mut(), "hidden weights")?;
         let hidden_bias = r.f32s("hidden biases")?;
         let mut output = [[0.0; H]; OUTPUTS];
-        for row in &mut output {
-            *row = r.f32s("output weights")?;
-        }
+        r.fill(output.as_flattened_mut(), "output weights")?;
         let output_bias = r.f32s("output biases")?;
         Ok(Self {
             hidden,
             hidden_bias,
             output,
             output_bias,
-            input_offset,
-            input_scale,
-            output_scale,
-            uses_turbidity: flags & 1 == 1,
-            turbidity_range: (tmin, tmax),
-            sun_zenith_range: (zmin, zmax),
-            source,
-            seed,
-            nrmse,
+            input_offset: header.input_offset,
+            input_scale: header.input_scale,
+            output_scale: header.output_scale,
+            uses_turbidity: header.flags & 1 == 1,
+            turbidity_range: header.turbidity_range,
+            sun_zenith_range: header.sun_zenith_range,
+            source: header.source,
+            seed: header.seed,
+            nrmse: header.nrmse,
         })
     }
 
@@ -651,5 +757,85 @@ mod tests {
             sample().encode(&mut small),
             Err(WeightsError::BufferTooSmall { needed: 624 })
         );
+    }
+
+    /// The messages, written without `core::fmt`'s formatting, against the same text written
+    /// by `format!` with the integer, hexadecimal and `Debug` formats that the messages stand
+    /// for.
+    #[test]
+    fn messages_match_core_fmt() {
+        extern crate std;
+        use std::format;
+        use std::string::ToString;
+
+        let (stored, computed) = (0xDEAD_BEEF_u32, 0x0000_01F0_u32);
+        let cases = [
+            (
+                WeightsError::Truncated {
+                    needed: 624,
+                    got: 0,
+                },
+                format!("weight file truncated: {} bytes, needs {}", 0, 624),
+            ),
+            (
+                WeightsError::TrailingBytes {
+                    needed: 624,
+                    got: 100_000_007,
+                },
+                format!(
+                    "weight file has {} bytes, {} more than its {}-byte shape",
+                    100_000_007,
+                    100_000_007 - 624,
+                    624
+                ),
+            ),
+            (
+                WeightsError::BadMagic(*b"\0K\xffN"),
+                format!(
+                    "not a weight file: magic {:?}, expected \"SKYN\"",
+                    *b"\0K\xffN"
+                ),
+            ),
+            (
+                WeightsError::UnsupportedVersion(65_535),
+                format!(
+                    "weight file version {} is not supported (only {VERSION})",
+                    65_535
+                ),
+            ),
+            (
+                WeightsError::WrongShape {
+                    found: [6, 255, 3],
+                    expected: [6, 12, 3],
+                },
+                format!(
+                    "weight file is a {}-{}-{} network, expected {}-{}-{}",
+                    6, 255, 3, 6, 12, 3
+                ),
+            ),
+            (
+                WeightsError::ChecksumMismatch { stored, computed },
+                format!(
+                    "weight file checksum mismatch: stored {stored:#010x}, data gives {computed:#010x}"
+                ),
+            ),
+            (
+                WeightsError::NonFinite {
+                    field: "hidden weights",
+                },
+                format!("weight file field {} is not finite", "hidden weights"),
+            ),
+            (
+                WeightsError::InvalidHeader { field: "flags" },
+                format!("weight file header field {} is invalid", "flags"),
+            ),
+            (
+                WeightsError::BufferTooSmall { needed: 10 },
+                format!("output buffer too small: {} bytes needed", 10),
+            ),
+        ];
+        for (error, expected) in cases {
+            assert_eq!(error.to_string(), expected);
+        }
     }
 }

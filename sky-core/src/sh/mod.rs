@@ -23,11 +23,15 @@
 //!
 //! The reconstruction error of eqs. 2-3 (seed 001 §3.2), relative to the sky's smallest
 //! luminance, largest over the linear sRGB channels, on skies off the fit grid: E_mean at most
-//! 0.0015 % for 1 to 5 bands and 0.35 % for 7 (E_max 0.005 % and 1.05 %); held by
+//! 0.0015 % for 1 to 5 bands and 0.35 % for 7 (E_max 0.0051 % and 1.05 %); held by
 //! `tests/tests/sh.rs` at the paper's bounds (0.005 % up to 5 bands, 1.5 % at 7). The
 //! irradiance agrees with a brute-force cosine-weighted integral of the sky to 1 % from 5 bands
-//! on (see [`ShSky::irradiance`]). The tables take 62 076 bytes for 7 bands
-//! ([`PolynomialTable::bytes_for_bands`] for fewer).
+//! on (see [`ShSky::irradiance`]). The tables take 28 080 bytes for 7 bands
+//! ([`PolynomialTable::bytes_for_bands`] for fewer; 62 076 as f32): a row of small
+//! coefficients is stored as whole steps of 2⁻¹³ (bands 0-4) or 2⁻⁸ (bands 5-6) in `i16` or
+//! `i8` ([`polynomial::CoefficientRows`]), which adds at most 0.0003 % to the E_mean of 1 to
+//! 5 bands and 0.004 % to that of 7 (the rounding alone, measured by `sky-train fit-sh
+//! --report`, `docs/sh_errors.md`).
 //!
 //! # Conventions
 //!

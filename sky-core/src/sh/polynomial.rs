@@ -37,14 +37,12 @@ pub const fn stored_index(l: usize, m: usize) -> usize {
 /// Two groups of bands have their own degrees: the low group (`l < 5`, which alone makes up
 /// the expansions of up to 5 bands) has degree `NT − 1` in θ and `NU − 1` in τ, the high group
 /// (`l = 5, 6`) `MT − 1` and `MU − 1`, so that each band count's accuracy can be bought where
-/// it is needed.
+/// it is needed. Each group's polynomial coefficients are [`CoefficientRows`]: one row per
+/// Chebyshev term `T_i(u) T_j(v)`, stored as `f32` or, where the row's values are small enough,
+/// as whole multiples of the group's step in `i16` or `i8`.
 ///
-/// `low[i][j][stored_index(l, m)][channel]` (and `high[i][j][stored_index(l, m) − LOW_STORED]…`)
-/// multiplies `T_i(u) T_j(v)`, with `u = (2θ − θ_min − θ_max) / (θ_max − θ_min)` and likewise `v`
-/// for turbidity. The coefficients of all `(l, m)` and channels for one `(i, j)` are contiguous,
-/// so the evaluation is one multiply-add over a contiguous row per basis value, which
-/// vectorises. The units are those of the model's radiance (cd/m² scale for the Preetham sky)
-/// per unit SH coefficient.
+/// `u = (2θ − θ_min − θ_max) / (θ_max − θ_min)`, and likewise `v` for turbidity. The units are
+/// those of the model's radiance (cd/m² scale for the Preetham sky) per unit SH coefficient.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct PolynomialTable<const NT: usize, const NU: usize, const MT: usize, const MU: usize> {
@@ -52,16 +50,80 @@ pub struct PolynomialTable<const NT: usize, const NU: usize, const MT: usize, co
     pub sun_zenith: [f32; 2],
     /// The fitted turbidity range `[τ_min, τ_max]`.
     pub turbidity: [f32; 2],
-    /// The low group's polynomial coefficients, `[i][j][stored coefficient][R, G, B]`.
-    pub low: [[[[f32; 3]; LOW_STORED]; NU]; NT],
-    /// The high group's polynomial coefficients, `[i][j][stored coefficient − 15][R, G, B]`.
-    pub high: [[[[f32; 3]; HIGH_STORED]; MU]; MT],
+    /// The low group's polynomial coefficients: the row of term `(i, j)` holds
+    /// `[stored_index(l, m)][R, G, B]` for `l < 5`.
+    pub low: CoefficientRows<NT, NU, LOW_STORED>,
+    /// The high group's polynomial coefficients: the row of term `(i, j)` holds
+    /// `[stored_index(l, m) − 15][R, G, B]` for `l = 5, 6`.
+    pub high: CoefficientRows<MT, MU, HIGH_STORED>,
+}
+
+/// How one row of [`CoefficientRows`] is stored.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum RowWidth {
+    /// As `f32` values (a row with a value of 32 768 steps or more).
+    F32,
+    /// As `i16` multiples of the step (every value within ±32 767 steps).
+    I16,
+    /// As `i8` multiples of the step (every value within ±127 steps).
+    I8,
+}
+
+impl RowWidth {
+    /// Bytes per stored value.
+    #[must_use]
+    pub const fn bytes(self) -> usize {
+        match self {
+            Self::F32 => 4,
+            Self::I16 => 2,
+            Self::I8 => 1,
+        }
+    }
+}
+
+/// The coefficients of one group of bands: per Chebyshev term `T_i(u) T_j(v)` (`i < NT`,
+/// `j < NU`) a row of `K` RGB triples, one per stored `(l, m)` of the group, contiguous so
+/// that the evaluation is one multiply-add over a row per basis value, which vectorises.
+///
+/// A row is stored at the narrowest [`RowWidth`] its values allow: the rows of large
+/// low-order terms as `f32`, the rest as whole multiples of [`step`](Self::step) (a power of
+/// two, so that `n · step` is exact in `f32`). The rows of each width are kept in their own
+/// slice in term order (`i` major), and [`widths`](Self::widths) says which slice the next row
+/// of each term is in. A slice with fewer rows than `widths` asks for leaves the missing terms
+/// out (0): evaluation never fails.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct CoefficientRows<const NT: usize, const NU: usize, const K: usize> {
+    /// The value of one step of the integer rows, in the units of the coefficients.
+    pub step: f32,
+    /// The width of the row of each term, `[i][j]`.
+    pub widths: [[RowWidth; NU]; NT],
+    /// The `f32` rows, in term order.
+    pub f32_rows: &'static [[[f32; 3]; K]],
+    /// The `i16` rows (multiples of `step`), in term order.
+    pub i16_rows: &'static [[[i16; 3]; K]],
+    /// The `i8` rows (multiples of `step`), in term order.
+    pub i8_rows: &'static [[[i8; 3]; K]],
+}
+
+impl<const NT: usize, const NU: usize, const K: usize> CoefficientRows<NT, NU, K> {
+    /// Bytes of coefficient data of the first `used` `(l, m)` of every row (`K` for all).
+    #[must_use]
+    pub const fn bytes(&self, used: usize) -> usize {
+        let used = if used > K { K } else { used };
+        let per_value = self.f32_rows.len() * RowWidth::F32.bytes()
+            + self.i16_rows.len() * RowWidth::I16.bytes()
+            + self.i8_rows.len() * RowWidth::I8.bytes();
+        per_value * used * 3
+    }
 }
 
 impl<const NT: usize, const NU: usize, const MT: usize, const MU: usize>
     PolynomialTable<NT, NU, MT, MU>
 {
-    /// Bytes of coefficient data needed for `bands` bands (the tables of `l < bands`).
+    /// Bytes of coefficient data needed for `bands` bands (the tables of `l < bands`; the
+    /// row widths, one byte per term, are not counted).
     #[must_use]
     pub const fn bytes_for_bands(&self, bands: usize) -> usize {
         let bands = if bands > MAX_BANDS { MAX_BANDS } else { bands };
@@ -71,7 +133,7 @@ impl<const NT: usize, const NU: usize, const MT: usize, const MU: usize>
         } else {
             (stored, 0)
         };
-        (low * NT * NU + high * MT * MU) * 3 * core::mem::size_of::<f32>()
+        self.low.bytes(low) + self.high.bytes(high)
     }
 
     /// Evaluates the polynomials at sun zenith `theta` and turbidity `tau` (clamped to the
@@ -99,12 +161,22 @@ impl<const NT: usize, const NU: usize, const MT: usize, const MU: usize>
     }
 }
 
-/// Evaluates the tables of bands `first..end` (`tables[i][j][0]` is `(first, 0)`) at the
+/// `sums[k] += b · row[k]` for every `k` of `sums` (a row's first values).
+#[inline]
+fn multiply_add<T: Copy + Into<f32>>(sums: &mut [f32], b: f32, row: &[T]) {
+    for (s, p) in sums.iter_mut().zip(row) {
+        *s += b * (*p).into();
+    }
+}
+
+/// Evaluates the rows of bands `first..end` (each row's first triple is `(first, 0)`) at the
 /// normalised `(u, v)`: each basis value `T_i(u) T_j(v)` is computed once and shared by every
-/// coefficient (§3.1), as one multiply-add over the contiguous row of coefficients.
+/// coefficient (§3.1), as one multiply-add over the row's values. An integer row's basis value
+/// is multiplied by the step first (exact: the step is a power of two), so the sums are those
+/// of the `f32` values `n · step`.
 #[inline]
 fn expand<const NT: usize, const NU: usize, const K: usize>(
-    tables: &[[[[f32; 3]; K]; NU]; NT],
+    rows: &CoefficientRows<NT, NU, K>,
     u: f32,
     v: f32,
     first: usize,
@@ -117,11 +189,30 @@ fn expand<const NT: usize, const NU: usize, const K: usize>(
     let used = (stored_index(end, 0) - offset).min(K);
     let mut acc = [[0.0f32; 3]; K];
     let sums = &mut acc.as_flattened_mut()[..3 * used];
-    for (ti, rows) in tu.iter().zip(tables) {
-        for (tj, row) in tv.iter().zip(rows) {
+    let (mut wide, mut medium, mut narrow) = (
+        rows.f32_rows.iter(),
+        rows.i16_rows.iter(),
+        rows.i8_rows.iter(),
+    );
+    for (ti, widths) in tu.iter().zip(&rows.widths) {
+        for (tj, width) in tv.iter().zip(widths) {
             let b = ti * tj;
-            for (s, p) in sums.iter_mut().zip(row.as_flattened()) {
-                *s += b * p;
+            match width {
+                RowWidth::F32 => {
+                    if let Some(row) = wide.next() {
+                        multiply_add(sums, b, row.as_flattened());
+                    }
+                }
+                RowWidth::I16 => {
+                    if let Some(row) = medium.next() {
+                        multiply_add(sums, b * rows.step, row.as_flattened());
+                    }
+                }
+                RowWidth::I8 => {
+                    if let Some(row) = narrow.next() {
+                        multiply_add(sums, b * rows.step, row.as_flattened());
+                    }
+                }
             }
         }
     }
@@ -177,16 +268,42 @@ mod tests {
 
     #[test]
     fn evaluates_a_known_polynomial() {
-        // c_00 red = T_1(u) T_2(v) = u (2v² − 1); c_51 blue = 5; everything else 0.
-        let mut table = PolynomialTable::<3, 4, 2, 2> {
+        use RowWidth::{F32, I8, I16};
+        // c_00 red = T_1(u) T_2(v) (an f32 row); c_21 green = 3 (6 steps of 0.5 in the i16
+        // row of T_0 T_0); c_51 blue = 5 (20 steps of 0.25, i8); every other row is absent (0).
+        const ONE_RED: [[f32; 3]; LOW_STORED] = {
+            let mut row = [[0.0; 3]; LOW_STORED];
+            row[0][0] = 1.0;
+            row
+        };
+        const SIX_GREEN: [[i16; 3]; LOW_STORED] = {
+            let mut row = [[0; 3]; LOW_STORED];
+            row[stored_index(2, 1)][1] = 6;
+            row
+        };
+        const TWENTY_BLUE: [[i8; 3]; HIGH_STORED] = {
+            let mut row = [[0; 3]; HIGH_STORED];
+            row[stored_index(5, 1) - LOW_STORED][2] = 20;
+            row
+        };
+        let table = PolynomialTable::<3, 4, 2, 2> {
             sun_zenith: [0.0, 2.0],
             turbidity: [2.0, 6.0],
-            low: [[[[0.0; 3]; LOW_STORED]; 4]; 3],
-            high: [[[[0.0; 3]; HIGH_STORED]; 2]; 2],
+            low: CoefficientRows {
+                step: 0.5,
+                widths: [[I16, I8, I8, I8], [I8, I8, F32, I8], [I8; 4]],
+                f32_rows: &[ONE_RED],
+                i16_rows: &[SIX_GREEN],
+                i8_rows: &[],
+            },
+            high: CoefficientRows {
+                step: 0.25,
+                widths: [[I8, I16], [F32, F32]],
+                f32_rows: &[],
+                i16_rows: &[],
+                i8_rows: &[TWENTY_BLUE],
+            },
         };
-        table.low[1][2][0][0] = 1.0;
-        table.low[0][0][stored_index(2, 1)][1] = 3.0;
-        table.high[0][0][stored_index(5, 1) - LOW_STORED][2] = 5.0;
         let mut out = [Vec3::ONE; MAX_COEFFICIENTS];
         table.evaluate(1.5, 5.0, 7, &mut out);
         let (u, v) = (0.5f32, 0.5f32);
@@ -197,7 +314,9 @@ mod tests {
         table.evaluate(1.5, 5.0, 5, &mut out);
         assert_eq!(out[index(5, 1)], Vec3::ZERO);
         assert_eq!(out[index(2, 1)].y, 3.0);
-        assert_eq!(table.bytes_for_bands(5), 15 * 3 * 12 * 4);
-        assert_eq!(table.bytes_for_bands(7), (15 * 12 + 13 * 4) * 3 * 4);
+        // One f32 and one i16 row in the low group, one i8 row in the high group.
+        assert_eq!(table.bytes_for_bands(5), 15 * 3 * (4 + 2));
+        assert_eq!(table.bytes_for_bands(7), 15 * 3 * (4 + 2) + 13 * 3);
+        assert_eq!(table.bytes_for_bands(2), 3 * 3 * (4 + 2));
     }
 }

@@ -2,7 +2,9 @@
 
 use std::fmt::Write as _;
 
-use super::{FitConfig, LOW_BANDS, ShFit, stored_lm};
+use sky_core::sh::polynomial::RowWidth;
+
+use super::{FitConfig, LOW_BANDS, STEPS, ShFit, stored_lm};
 
 /// The const's name for a model: its command-line name in upper case (`PREETHAM`).
 #[must_use]
@@ -55,8 +57,9 @@ pub fn command(fit: &ShFit) -> String {
     s
 }
 
-/// Writes one group's tables, `[[[[f32; 3]; K]; NU]; NT]`: one line per `(i, j)` holding every
-/// `(l, m)` of the group as `[R, G, B]`.
+/// Writes one group's rows, a `CoefficientRows`: the step, the width of every Chebyshev term's
+/// row, then the rows of each width, one line per term holding every `(l, m)` of the group as
+/// `[R, G, B]`.
 fn write_group(w: &mut String, name: &str, fit: &ShFit, low: bool) {
     let group: Vec<&[Vec<Vec<f32>>; 3]> = stored_lm()
         .into_iter()
@@ -64,25 +67,54 @@ fn write_group(w: &mut String, name: &str, fit: &ShFit, low: bool) {
         .filter(|((l, _), _)| (*l < LOW_BANDS) == low)
         .map(|(_, p)| p)
         .collect();
-    let d = if low { fit.config.low } else { fit.config.high };
-    writeln!(w, "    {name}: [").ok();
-    for i in 0..=d.theta {
-        writeln!(w, "        // T_{i}(u)").ok();
-        writeln!(w, "        [").ok();
-        for j in 0..=d.tau {
-            let cells: Vec<String> = group
-                .iter()
-                .map(|p| format!("[{:?}, {:?}, {:?}]", p[0][i][j], p[1][i][j], p[2][i][j]))
-                .collect();
-            writeln!(w, "            [{}],", cells.join(", ")).ok();
+    let widths = &fit.widths[usize::from(!low)];
+    let step = STEPS[usize::from(!low)];
+    writeln!(w, "    {name}: CoefficientRows {{").ok();
+    writeln!(w, "        step: {step:?},").ok();
+    writeln!(w, "        widths: [").ok();
+    for (i, row) in widths.iter().enumerate() {
+        let names: Vec<&str> = row.iter().map(|&x| width_name(x)).collect();
+        writeln!(w, "            [{}], // T_{i}(u)", names.join(", ")).ok();
+    }
+    writeln!(w, "        ],").ok();
+    for width in [RowWidth::F32, RowWidth::I16, RowWidth::I8] {
+        writeln!(w, "        {}_rows: &[", width_name(width).to_lowercase()).ok();
+        for (i, row) in widths.iter().enumerate() {
+            for (j, _) in row.iter().enumerate().filter(|(_, x)| **x == width) {
+                let cells: Vec<String> = group
+                    .iter()
+                    .map(|p| {
+                        let [r, g, b] = [p[0][i][j], p[1][i][j], p[2][i][j]];
+                        match width {
+                            RowWidth::F32 => format!("[{r:?}, {g:?}, {b:?}]"),
+                            RowWidth::I16 | RowWidth::I8 => {
+                                // Whole steps of at most 32 767 (the row's width).
+                                #[allow(clippy::cast_possible_truncation)]
+                                let n = |v: f32| (f64::from(v) / f64::from(step)) as i32;
+                                format!("[{}, {}, {}]", n(r), n(g), n(b))
+                            }
+                        }
+                    })
+                    .collect();
+                writeln!(w, "            [{}], // T_{i} T_{j}", cells.join(", ")).ok();
+            }
         }
         writeln!(w, "        ],").ok();
     }
-    writeln!(w, "    ],").ok();
+    writeln!(w, "    }},").ok();
+}
+
+/// The name of a row width in the generated source.
+fn width_name(width: RowWidth) -> &'static str {
+    match width {
+        RowWidth::F32 => "F32",
+        RowWidth::I16 => "I16",
+        RowWidth::I8 => "I8",
+    }
 }
 
 /// Rust source of the fitted table: a `PolynomialTable` const named [`const_name`], every f32
-/// written in its shortest round-tripping form.
+/// written in its shortest round-tripping form, every integer row's value as its steps.
 #[must_use]
 pub fn rust_source(fit: &ShFit) -> String {
     let c = &fit.config;
@@ -117,11 +149,29 @@ pub fn rust_source(fit: &ShFit) -> String {
     .ok();
     writeln!(
         w,
-        "//! m >= 0 coefficients and linear sRGB; one line per Chebyshev term T_i(u) T_j(v)."
+        "//! m >= 0 coefficients and linear sRGB; one line per Chebyshev term T_i(u) T_j(v): as f32,"
+    )
+    .ok();
+    writeln!(
+        w,
+        "//! or where the row's values allow as whole steps in i16 or i8 (steps {:?} = 2^{}",
+        STEPS[0],
+        STEPS[0].log2()
+    )
+    .ok();
+    writeln!(
+        w,
+        "//! for bands 0-4, {:?} = 2^{} for bands 5-6).",
+        STEPS[1],
+        STEPS[1].log2()
     )
     .ok();
     writeln!(w).ok();
-    writeln!(w, "use super::polynomial::PolynomialTable;").ok();
+    writeln!(
+        w,
+        "use super::polynomial::RowWidth::{{F32, I8, I16}};\nuse super::polynomial::{{CoefficientRows, PolynomialTable}};"
+    )
+    .ok();
     writeln!(w).ok();
     writeln!(
         w,

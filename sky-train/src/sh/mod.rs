@@ -18,6 +18,7 @@ use crate::args::ParamError;
 use crate::sources::{self, ModelKind, SkyParams, SkySource};
 use fit::{LeastSquares, Matrix};
 use projection::{BANDS, COEFFICIENTS, Coefficients, Integrator, index};
+use sky_core::sh::polynomial::RowWidth;
 
 /// The coefficient functions stored: `(l, m)` with `m ≥ 0` (see sky-core's
 /// `sh::polynomial::STORED_COEFFICIENTS`).
@@ -53,6 +54,18 @@ impl Degrees {
 
 /// The bands of the low group (sky-core's `sh::polynomial::LOW_BANDS`).
 pub const LOW_BANDS: usize = 5;
+
+/// The step of the integer rows of the stored tables (sky-core's
+/// `sh::polynomial::CoefficientRows`), low group (`l < 5`) and high group (`l = 5, 6`), in the
+/// units of the coefficients (cd/m² for Preetham): powers of two, so that `n · step` is exact
+/// in f32.
+///
+/// The low group's 2⁻¹³ leaves its rounding far below the fit's own error and the 0.005 % the
+/// 5-band expansions are held to (eq. 3's E_mean of the rounding alone: about 3e-6 of the
+/// smallest luminance, against the fit's 1.4e-5); the high group only needs the 7-band
+/// 1.5 %, and its 2⁻⁸ adds about 4e-5 to the fit's 3.5e-3. `fit-sh --report` measures both
+/// (the quantisation column of `docs/sh_errors.md`).
+pub const STEPS: [f32; 2] = [1.0 / 8192.0, 1.0 / 256.0];
 
 /// What `fit-sh` fits.
 #[derive(Debug, Clone, PartialEq)]
@@ -280,16 +293,31 @@ pub fn project_all(
         .collect()
 }
 
-/// A fitted model: the polynomial coefficients, rounded to f32 as stored.
+/// Polynomial coefficients `[stored (l, m)][channel][i][j]`: the coefficient of
+/// `T_i(u(θ)) T_j(v(τ))`.
+pub type Polynomials = Vec<[Vec<Vec<f32>>; 3]>;
+
+/// `[group][i][j]`: how the row of Chebyshev term `(i, j)` is stored, low group then high.
+pub type RowWidths = [Vec<Vec<RowWidth>>; 2];
+
+/// A fitted model: the polynomial coefficients, rounded to f32, and as stored.
 ///
 /// Each coefficient function `c_lm(θ, τ)` is a tensor-product Chebyshev polynomial (eq. 1 in a
-/// well-conditioned basis) with the degrees of its band's group.
+/// well-conditioned basis) with the degrees of its band's group. The stored table keeps the
+/// row of each Chebyshev term (every `(l, m)` and channel of a group) as f32 or, where every
+/// value of the row is within 32 767 (`i16`) or 127 (`i8`) steps of its group's [`STEPS`],
+/// rounded to a whole number of steps.
 #[derive(Debug, Clone)]
 pub struct ShFit {
     /// What was fitted.
     pub config: FitConfig,
-    /// `[stored (l, m)][channel][i][j]`: the coefficient of `T_i(u(θ)) T_j(v(τ))`.
-    pub polynomials: Vec<[Vec<Vec<f32>>; 3]>,
+    /// `[stored (l, m)][channel][i][j]`: the coefficient of `T_i(u(θ)) T_j(v(τ))`, as stored
+    /// (a value of an integer row is a whole number of steps).
+    pub polynomials: Polynomials,
+    /// The same, the least-squares fit rounded to f32 alone (before the integer rows).
+    pub fitted: Polynomials,
+    /// How the row of each Chebyshev term is stored.
+    pub widths: RowWidths,
     /// The 2-norm condition number of the Chebyshev design matrix (θ ⊗ τ), the largest of the
     /// two groups.
     pub condition: f64,
@@ -334,8 +362,7 @@ impl ShFit {
             );
             solvers.push((LeastSquares::new(&a), LeastSquares::new(&b)));
         }
-        #[allow(clippy::cast_possible_truncation)] // stored as f32
-        let polynomials = stored_lm()
+        let exact: Vec<[Vec<Vec<f64>>; 3]> = stored_lm()
             .into_iter()
             .map(|(l, m)| {
                 #[allow(clippy::cast_possible_wrap)]
@@ -347,15 +374,26 @@ impl ShFit {
                         .map(|row| row.iter().map(|s| s.coefficients[at][k]).collect())
                         .collect();
                     fit::fit_tensor(&values, solve_a, solve_b)
-                        .into_iter()
-                        .map(|r| r.into_iter().map(|v| v as f32).collect())
+                })
+            })
+            .collect();
+        #[allow(clippy::cast_possible_truncation)] // stored as f32
+        let fitted = exact
+            .iter()
+            .map(|p| {
+                p.each_ref().map(|c| {
+                    c.iter()
+                        .map(|r| r.iter().map(|&v| v as f32).collect())
                         .collect()
                 })
             })
             .collect();
+        let (polynomials, widths) = quantise(config, &exact);
         Ok(Self {
             config: config.clone(),
             polynomials,
+            fitted,
+            widths,
             condition,
             condition_monomial,
             asymmetry: samples.iter().map(Sample::asymmetry).fold(0.0, f64::max),
@@ -364,15 +402,31 @@ impl ShFit {
         })
     }
 
-    /// The reconstructed coefficients (f64 arithmetic on the stored f32 values) at sun zenith
+    /// The reconstructed coefficients (f64 arithmetic on the stored values) at sun zenith
     /// `theta` (radians, azimuth 0) and turbidity `tau`: the `m < 0` ones are 0.
     #[must_use]
     pub fn evaluate(&self, theta: f64, tau: f64) -> Coefficients {
+        self.evaluate_polynomials(&self.polynomials, theta, tau)
+    }
+
+    /// As [`evaluate`](Self::evaluate), from the f32 fit before the integer rows
+    /// ([`fitted`](Self::fitted)): their difference is the quantisation's own error.
+    #[must_use]
+    pub fn evaluate_fitted(&self, theta: f64, tau: f64) -> Coefficients {
+        self.evaluate_polynomials(&self.fitted, theta, tau)
+    }
+
+    fn evaluate_polynomials(
+        &self,
+        polynomials: &[[Vec<Vec<f32>>; 3]],
+        theta: f64,
+        tau: f64,
+    ) -> Coefficients {
         let (t0, t1) = self.config.theta_range();
         let (u0, u1) = self.config.tau_range();
         let (u, v) = (fit::normalise(theta, t0, t1), fit::normalise(tau, u0, u1));
         let mut c = [[0.0; 3]; COEFFICIENTS];
-        for ((l, m), poly) in stored_lm().into_iter().zip(&self.polynomials) {
+        for ((l, m), poly) in stored_lm().into_iter().zip(polynomials) {
             let d = self.config.degrees(l);
             let tu = fit::chebyshev(u, d.theta + 1);
             let tv = fit::chebyshev(v, d.tau + 1);
@@ -395,13 +449,86 @@ impl ShFit {
         c
     }
 
-    /// Bytes of coefficient data for `bands` bands (f32).
+    /// Bytes of coefficient data stored for `bands` bands (as sky-core's
+    /// `PolynomialTable::bytes_for_bands`).
     #[must_use]
     pub fn bytes_for_bands(&self, bands: usize) -> usize {
+        let row_bytes = |group: &Vec<Vec<RowWidth>>| -> usize {
+            group.iter().flatten().map(|w| w.bytes()).sum()
+        };
         stored_lm()
             .into_iter()
             .filter(|&(l, _)| l < bands)
-            .map(|(l, _)| 3 * 4 * self.config.degrees(l).count())
+            .map(|(l, _)| 3 * row_bytes(&self.widths[usize::from(l >= LOW_BANDS)]))
             .sum()
     }
+}
+
+/// The narrowest width for a row whose largest magnitude is `steps` steps.
+#[must_use]
+pub fn row_width(steps: f64) -> RowWidth {
+    if steps <= f64::from(i8::MAX) {
+        RowWidth::I8
+    } else if steps <= f64::from(i16::MAX) {
+        RowWidth::I16
+    } else {
+        RowWidth::F32
+    }
+}
+
+/// The stored tables of the least-squares polynomials `exact` (`[stored (l, m)][channel][i][j]`):
+/// per group and Chebyshev term, the row of every `(l, m)` and channel at the narrowest
+/// [`row_width`] for its largest value in steps of the group's [`STEPS`], an integer row's
+/// values rounded to whole steps, an f32 row's to f32. Returns the stored values and the
+/// widths (`[group][i][j]`).
+#[must_use]
+#[allow(clippy::cast_possible_truncation)] // stored as f32
+pub fn quantise(config: &FitConfig, exact: &[[Vec<Vec<f64>>; 3]]) -> (Polynomials, RowWidths) {
+    let lm = stored_lm();
+    let widths: RowWidths = std::array::from_fn(|group| {
+        let step = f64::from(STEPS[group]);
+        let d = if group == 0 { config.low } else { config.high };
+        let members: Vec<&[Vec<Vec<f64>>; 3]> = lm
+            .iter()
+            .zip(exact)
+            .filter(|((l, _), _)| usize::from(*l >= LOW_BANDS) == group)
+            .map(|(_, p)| p)
+            .collect();
+        (0..=d.theta)
+            .map(|i| {
+                (0..=d.tau)
+                    .map(|j| {
+                        let largest = members
+                            .iter()
+                            .flat_map(|p| p.iter().map(|c| (c[i][j] / step).round().abs()))
+                            .fold(0.0, f64::max);
+                        row_width(largest)
+                    })
+                    .collect()
+            })
+            .collect()
+    });
+    let stored = lm
+        .iter()
+        .zip(exact)
+        .map(|(&(l, _), p)| {
+            let group = usize::from(l >= LOW_BANDS);
+            let step = f64::from(STEPS[group]);
+            p.each_ref().map(|c| {
+                c.iter()
+                    .enumerate()
+                    .map(|(i, row)| {
+                        row.iter()
+                            .enumerate()
+                            .map(|(j, &v)| match widths[group][i][j] {
+                                RowWidth::F32 => v as f32,
+                                RowWidth::I16 | RowWidth::I8 => ((v / step).round() * step) as f32,
+                            })
+                            .collect()
+                    })
+                    .collect()
+            })
+        })
+        .collect();
+    (stored, widths)
 }
