@@ -9,7 +9,9 @@
 //! under cloud ([`crate::overcast`]), from the clear-sky index (measured over clear-sky global
 //! illuminance); the sky type is the Perez sky-clearness bin ([`crate::perez`]), from the diffuse
 //! and direct parts of the measurement, split by a separation model when only the global is known
-//! ([`Settings::decomposition`]: Perez's DIRINT by default, with the stability index of the
+//! ([`Settings::decomposition`]: Perez's DIRINT by default, continuous across its bins
+//! ([`crate::decomposition::DirintForm::Interpolated`]: a slowly changing reading gives a slowly
+//! changing split, efficacy and colour), with the stability index of the
 //! reading before when the caller keeps a [`History`] ([`step_with_history`]); DIRINDEX or
 //! Engerer2 with the step's clear sky, or Erbs's correlation; [`crate::decomposition`]), and
 //! W/m² become lux by Perez's global efficacy ([`crate::efficacy`]).
@@ -25,8 +27,8 @@ use crate::color::{self, Xyy};
 use crate::daylight::{self, ClearAtmosphere, Daylight};
 pub use crate::decomposition::Decomposition;
 use crate::decomposition::{
-    self as split, ClearSky, ENGERER2_2015, ENGERER2_2019_1MIN, MAX_STABILITY_GAP_MINUTES,
-    Separation,
+    self as split, ClearSky, DirintForm, ENGERER2_2015, ENGERER2_2019_1MIN,
+    MAX_STABILITY_GAP_MINUTES, Separation,
 };
 use crate::efficacy::{DEFAULT_PRECIPITABLE_WATER, Efficacy};
 use crate::error::SkyError;
@@ -385,6 +387,7 @@ fn separation(
                 Separation::Dirint {
                     pressure,
                     stability,
+                    form: DirintForm::Interpolated,
                 },
                 last,
             );
@@ -405,6 +408,7 @@ fn separation(
                         direct_normal,
                         stability: clear_stability,
                     },
+                    form: DirintForm::Interpolated,
                 },
                 last,
             );

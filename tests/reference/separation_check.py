@@ -16,14 +16,27 @@ their paths:
 With `--every N` only every N-th minute is kept, as a controller stepping every N minutes sees
 the readings (DIRINT's stability index is then between readings N minutes apart).
 
+Other stations: `--site LAT,LON,ELEVATION` (degrees north, east, metres) and files in the
+same CSV form (`Time(utc),GHI,DNI,DHI`) or BSRN station-to-archive files (`*.dat.gz`, read by
+pvlib's `read_bsrn`), e.g. BSRN Payerne June 2016 (46.815 N, 6.944 E, 491 m), the
+`pvlib/data/bsrn-pay0616.dat.gz` of the pvlib 0.10.5 wheel:
+
+    /tmp/venv/bin/pip download pvlib==0.10.5 --no-deps -d /tmp/pvlib-0.10.5
+    unzip -j /tmp/pvlib-0.10.5/pvlib-0.10.5-py3-none-any.whl pvlib/data/bsrn-pay0616.dat.gz
+    /tmp/venv/bin/python tests/reference/separation_check.py --site 46.815,6.944,491 \
+        target/debug/sky-train bsrn-pay0616.dat.gz
+
 For each month, the GHI column goes to `sky-train schedule --measurements` (the project's
 split, each row against the row before) once per `--decomposition`; the output's `dhi_wm2` is
 compared with the measured DHI on each day's daylight minutes with GHI above 50 W/m² that pass
 a BSRN-style closure check (GHI within 8 % of DHI + DNI cos Z below 75 deg zenith, 15 % above).
-The same models that need a clear sky (DIRINDEX, Engerer2) are run again here with pvlib's
-Ineichen-Perez clear sky (Linke-turbidity climatology): pvlib's `irradiance.dirindex` with
-the stability index from the minute before (as the controller does), and Engerer2 written
-out from Engerer 2015 eq. 33 and Bright & Engerer 2019's coefficients.
+The CLI's clear sky (DIRINDEX, Engerer2) is the site's month's (only --lat, --lon and
+--elevation are given). The same models are run again here with pvlib's Ineichen-Perez clear
+sky (Linke-turbidity climatology): pvlib's `irradiance.dirindex` with the stability index from
+the minute before (as the controller does), and Engerer2 written out from Engerer 2015 eq. 33
+and Bright & Engerer 2019's coefficients; and DIRINT as published (its bins, pvlib's
+`irradiance.dirint` terms with the stability index from the minute before, the beam cut to the
+global): "dirint, binned (pvlib)".
 
 A day is clear when its global over the Ineichen clear sky's (sun above 5 deg) is above 0.85
 and pvlib's `detect_clearsky` finds 85 % of its minutes clear; overcast below 0.45; else
@@ -81,29 +94,53 @@ def engerer2(ghi, ghi_cs, zen, times, k):
     return np.where(zen > 87, ghi, kd * ghi)
 
 
-def dirindex_causal(ghi, cs, zen, times, pressure):
-    """pvlib's DIRINDEX with delta-kt' from the minute before only (Perez eq. 3)."""
-    def dirint_prev(g):
-        disc = pvlib.irradiance.disc(g, zen, times, pressure=pressure)
-        ktp = pvlib.irradiance.clearness_index_zenith_independent(
-            disc["kt"], disc["airmass"], max_clearness_index=1)
-        delta = (ktp - ktp.shift(1)).abs()
-        gap = pd.Series(times).diff().dt.total_seconds().values > 90 * 60
-        gap[0] = True
-        delta[gap] = np.nan
-        delta = delta.fillna(-1)
-        coeffs = pvlib.irradiance._dirint_coeffs(
-            times, ktp, zen, pd.Series(-1, index=times), delta)
-        return disc["dni"] * coeffs
-    g = pd.Series(ghi, index=times)
-    dni = cs["dni"] * dirint_prev(g) / dirint_prev(cs["ghi"])
-    dni = np.nan_to_num(np.maximum(dni.values, 0))
+def dirint_prev(g, zen, times, pressure):
+    """pvlib's DIRINT (binned, as published) with delta-kt' from the minute before only (Perez
+    eq. 3), the dew point unknown."""
+    disc = pvlib.irradiance.disc(g, zen, times, pressure=pressure)
+    ktp = pvlib.irradiance.clearness_index_zenith_independent(
+        disc["kt"], disc["airmass"], max_clearness_index=1)
+    delta = (ktp - ktp.shift(1)).abs()
+    gap = pd.Series(times).diff().dt.total_seconds().values > 90 * 60
+    gap[0] = True
+    delta[gap] = np.nan
+    delta = delta.fillna(-1)
+    coeffs = pvlib.irradiance._dirint_coeffs(
+        times, ktp, zen, pd.Series(-1, index=times), delta)
+    return disc["dni"] * coeffs
+
+
+def cut(dni, ghi, zen):
+    """The diffuse of a direct normal irradiance, the beam cut to the global, none above 87 deg."""
+    dni = np.nan_to_num(np.maximum(np.asarray(dni, dtype=float), 0))
     beam = np.minimum(dni * np.cos(np.radians(zen)), ghi)
     return np.where(zen > 87, ghi, ghi - beam)
 
 
+def dirint_binned(ghi, zen, times, pressure):
+    return cut(dirint_prev(pd.Series(ghi, index=times), zen, times, pressure), ghi, zen)
+
+
+def dirindex_causal(ghi, cs, zen, times, pressure):
+    """pvlib's DIRINDEX with delta-kt' from the minute before only (Perez eq. 3)."""
+    g = pd.Series(ghi, index=times)
+    dni = (cs["dni"] * dirint_prev(g, zen, times, pressure)
+           / dirint_prev(cs["ghi"], zen, times, pressure))
+    return cut(dni.values, ghi, zen)
+
+
+def read(path):
+    """A month of 1-minute GHI, DNI, DHI: the DTU CSV, or a BSRN station-to-archive file."""
+    if path.endswith(".dat.gz") or path.endswith(".dat"):
+        data, _ = pvlib.iotools.read_bsrn(path)
+        raw = data[["ghi", "dni", "dhi"]].rename(columns=str.upper)
+        raw.index = raw.index.tz_localize(None)
+        return raw
+    return pd.read_csv(path, index_col=0, parse_dates=True)
+
+
 def month(binary, path, every):
-    raw = pd.read_csv(path, index_col=0, parse_dates=True)
+    raw = read(path)
     raw = raw.dropna(subset=["GHI", "DHI", "DNI"])
     raw = raw[raw.GHI > -10]
     location = pvlib.location.Location(LAT, LON, altitude=ELEV)
@@ -138,6 +175,7 @@ def month(binary, path, every):
     pressure = pvlib.atmosphere.alt2pres(ELEV)
     split = {m: cli_split(binary, times, ghi, m) for m in MODELS}
     g0 = np.maximum(ghi, 0)
+    split["dirint, binned (pvlib)"] = dirint_binned(g0, zen, times, pressure)
     split["dirindex, Ineichen"] = dirindex_causal(g0, cs, zen, times, pressure)
     for m, k in ENGERER2.items():
         split[f"{m}, Ineichen"] = engerer2(g0, cs.ghi.values, zen, times, k)
@@ -158,10 +196,17 @@ def month(binary, path, every):
 
 
 def main():
+    global LAT, LON, ELEV
     args = sys.argv[1:]
     every = 1
-    if args[0] == "--every":
-        every, args = int(args[1]), args[2:]
+    while args[0].startswith("--"):
+        if args[0] == "--every":
+            every, args = int(args[1]), args[2:]
+        elif args[0] == "--site":
+            LAT, LON, ELEV = (float(v) for v in args[1].split(","))
+            args = args[2:]
+        else:
+            sys.exit(f"unknown option {args[0]}")
     binary, paths = args[0], args[1:]
     rows = []
     for p in paths:

@@ -87,12 +87,14 @@ pub struct ScheduleArgs {
     #[arg(long)]
     pub sky_only: bool,
     /// The separation model splitting a GHI-only reading into diffuse and direct: dirint
-    /// (Perez et al. 1992, at the site's pressure (--elevation), with each reading's stability
-    /// against the row before), dirindex (Perez et al. 2002: DIRINT scaled to the clear sky's
-    /// beam), erbs (Erbs et al. 1982), engerer2 (Engerer 2015's coefficients) or
-    /// engerer2-global (Engerer2 with Bright and Engerer's 2019 world-wide 1-minute
-    /// coefficients); the clear sky of dirindex and engerer2 is the schedule's (--aod) and must
-    /// fit the site. docs/weather.md compares them with measured diffuse irradiance.
+    /// (Perez et al. 1992, continuous across its bins, at the site's pressure (--elevation),
+    /// with each reading's stability against the row before), dirindex (Perez et al. 2002:
+    /// DIRINT scaled to the clear sky's beam), erbs (Erbs et al. 1982), engerer2 (Engerer
+    /// 2015's coefficients) or engerer2-global (Engerer2 with Bright and Engerer's 2019
+    /// world-wide 1-minute coefficients); the clear sky of dirindex and engerer2 is the
+    /// schedule's (the site's month, or --aod and the preset), not scaled by the
+    /// self-calibration, and must fit the site's beam. docs/weather.md compares them with
+    /// measured diffuse irradiance.
     #[arg(long, value_enum, value_name = "MODEL", default_value_t = DecompositionArg::Dirint)]
     pub decomposition: DecompositionArg,
     /// Run without the self-calibration: the clear sky (clear_global_lux, clear_sky_index)
