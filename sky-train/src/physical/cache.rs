@@ -43,7 +43,7 @@ use super::transport::{GroundTables, Medium, OrderReport, Resolution, Table3, Tr
 use crate::args::ParamError;
 
 /// The file format's version (bumped with any change of layout or method).
-pub const FORMAT_VERSION: u32 = 4;
+pub const FORMAT_VERSION: u32 = 5;
 const MAGIC: &[u8; 8] = b"SKYPHYS\0";
 
 /// The environment variable that overrides the cache directory.

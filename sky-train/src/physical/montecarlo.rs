@@ -182,12 +182,13 @@ impl MonteCarlo {
         self.phase_r.0 + self.phase_r.1 * nu * nu
     }
 
-    /// The radiance one path from a viewer at `p0` along `d0` brings back.
-    fn path(&self, p0: V3, d0: V3, sun: V3, rng: &mut StdRng) -> f64 {
+    /// The radiance one path from a viewer at `p0` along `d0` brings back with the sun at each
+    /// of `suns`, added to `out` (one walk serves every sun: the walk does not depend on the
+    /// sun, only the next-event estimates towards it do).
+    fn path(&self, p0: V3, d0: V3, suns: &[V3], rng: &mut StdRng, out: &mut [f64]) {
         let mut p = p0;
         let mut d = d0;
         let mut throughput = 1.0;
-        let mut radiance = 0.0;
         for bounce in 0..self.max_events {
             let ground = if dot(p, d) < 0.0 {
                 to_sphere(p, d, R)
@@ -212,12 +213,15 @@ impl MonteCarlo {
             match collision {
                 Some((q, br, ba, bt)) => {
                     throughput *= (br + ba) / bt;
-                    let s = Self::sun_sample(sun, rng);
-                    let nu = dot(d, s);
-                    let phase = (br * self.rayleigh_phase(nu)
-                        + ba * constituents::henyey_greenstein(self.g, nu))
-                        / (br + ba);
-                    radiance += throughput * phase * self.solar * self.transmittance(q, s, rng);
+                    for (sun, radiance) in suns.iter().zip(out.iter_mut()) {
+                        let s = Self::sun_sample(*sun, rng);
+                        let nu = dot(d, s);
+                        let phase = (br * self.rayleigh_phase(nu)
+                            + ba * constituents::henyey_greenstein(self.g, nu))
+                            / (br + ba);
+                        *radiance +=
+                            throughput * phase * self.solar * self.transmittance(q, s, rng);
+                    }
                     // Scatter: choose the constituent, then the new direction from its phase.
                     let mu = if rng.random::<f64>() * (br + ba) < br {
                         loop {
@@ -244,60 +248,83 @@ impl MonteCarlo {
                     let q = add(p, d, end);
                     let n = normalise(q);
                     throughput *= self.albedo;
-                    let s = Self::sun_sample(sun, rng);
-                    let c = dot(n, s);
-                    if c > 0.0 {
-                        radiance += throughput / PI
-                            * c
-                            * self.solar
-                            * self.transmittance(add(q, n, 1e-3), s, rng);
+                    for (sun, radiance) in suns.iter().zip(out.iter_mut()) {
+                        let s = Self::sun_sample(*sun, rng);
+                        let c = dot(n, s);
+                        if c > 0.0 {
+                            *radiance += throughput / PI
+                                * c
+                                * self.solar
+                                * self.transmittance(add(q, n, 1e-3), s, rng);
+                        }
                     }
                     let mu = rng.random::<f64>().sqrt();
                     d = around(n, mu, 2.0 * PI * rng.random::<f64>());
                     p = add(q, n, 1e-3);
                 }
-                None => return radiance,
+                None => return,
             }
             if bounce >= 4 {
                 let survive = throughput.clamp(0.05, 1.0);
                 if rng.random::<f64>() >= survive {
-                    return radiance;
+                    return;
                 }
                 throughput /= survive;
             }
         }
-        radiance
+    }
+
+    /// `paths` samples of `n` quantities at once (`sample` adds each path's to its slice),
+    /// their means and standard errors.
+    fn estimates(
+        &self,
+        paths: usize,
+        seed: u64,
+        n: usize,
+        sample: impl Fn(&mut StdRng, &mut [f64]) + Sync,
+    ) -> Vec<Estimate> {
+        let chunks = 64;
+        let per = paths.div_ceil(chunks);
+        let sums: Vec<Vec<(f64, f64)>> = (0..chunks)
+            .into_par_iter()
+            .map(|c| {
+                let mut rng = StdRng::seed_from_u64(seed ^ (c as u64).wrapping_mul(0x9e37_79b9));
+                let mut sums = vec![(0.0, 0.0); n];
+                let mut x = vec![0.0; n];
+                for _ in 0..per {
+                    x.fill(0.0);
+                    sample(&mut rng, &mut x);
+                    for (s, &x) in sums.iter_mut().zip(&x) {
+                        s.0 += x;
+                        s.1 += x * x;
+                    }
+                }
+                sums
+            })
+            .collect();
+        #[allow(clippy::cast_precision_loss)]
+        let count = (per * chunks) as f64;
+        (0..n)
+            .map(|k| {
+                let (s, s2) = sums
+                    .iter()
+                    .fold((0.0, 0.0), |a, b| (a.0 + b[k].0, a.1 + b[k].1));
+                let mean = s / count;
+                Estimate {
+                    mean,
+                    std_error: ((s2 / count - mean * mean).max(0.0) / count).sqrt(),
+                }
+            })
+            .collect()
     }
 
     fn estimate(
         &self,
         paths: usize,
         seed: u64,
-        sample: impl Fn(&mut StdRng) -> f64 + Sync,
+        sample: impl Fn(&mut StdRng, &mut [f64]) + Sync,
     ) -> Estimate {
-        let chunks = 64;
-        let per = paths.div_ceil(chunks);
-        let sums: Vec<(f64, f64)> = (0..chunks)
-            .into_par_iter()
-            .map(|c| {
-                let mut rng = StdRng::seed_from_u64(seed ^ (c as u64).wrapping_mul(0x9e37_79b9));
-                let (mut s, mut s2) = (0.0, 0.0);
-                for _ in 0..per {
-                    let x = sample(&mut rng);
-                    s += x;
-                    s2 += x * x;
-                }
-                (s, s2)
-            })
-            .collect();
-        #[allow(clippy::cast_precision_loss)]
-        let n = (per * chunks) as f64;
-        let (s, s2) = sums.iter().fold((0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1));
-        let mean = s / n;
-        Estimate {
-            mean,
-            std_error: ((s2 / n - mean * mean).max(0.0) / n).sqrt(),
-        }
+        self.estimates(paths, seed, 1, sample)[0]
     }
 
     fn sun(zenith_deg: f64) -> V3 {
@@ -310,22 +337,40 @@ impl MonteCarlo {
     #[must_use]
     pub fn radiance(&self, zenith_deg: f64, dir: V3, paths: usize, seed: u64) -> Estimate {
         let (sun, d) = (Self::sun(zenith_deg), normalise(dir));
-        self.estimate(paths, seed, |rng| self.path([0.0, 0.0, R], d, sun, rng))
+        self.estimate(paths, seed, |rng, out| {
+            self.path([0.0, 0.0, R], d, &[sun], rng, out);
+        })
     }
 
     /// Diffuse horizontal irradiance at the ground with the sun at `zenith_deg`, W m⁻² nm⁻¹.
     #[must_use]
     pub fn diffuse_irradiance(&self, zenith_deg: f64, paths: usize, seed: u64) -> Estimate {
-        let sun = Self::sun(zenith_deg);
-        let e = self.estimate(paths, seed, |rng| {
+        self.diffuse_irradiances(&[zenith_deg], paths, seed)[0]
+    }
+
+    /// Diffuse horizontal irradiance at the ground with the sun at each of `zeniths_deg`,
+    /// W m⁻² nm⁻¹, from the same `paths` walks (next-event estimates towards each sun): each
+    /// estimate is what [`Self::diffuse_irradiance`] gives for its sun (the same for one sun and
+    /// the same seed), at a fraction of the cost of separate runs; their errors are correlated.
+    #[must_use]
+    pub fn diffuse_irradiances(
+        &self,
+        zeniths_deg: &[f64],
+        paths: usize,
+        seed: u64,
+    ) -> Vec<Estimate> {
+        let suns: Vec<V3> = zeniths_deg.iter().map(|&z| Self::sun(z)).collect();
+        self.estimates(paths, seed, suns.len(), |rng, out| {
             let mu = rng.random::<f64>().sqrt();
             let d = around([0.0, 0.0, 1.0], mu, 2.0 * PI * rng.random::<f64>());
-            self.path([0.0, 0.0, R], d, sun, rng)
-        });
-        Estimate {
+            self.path([0.0, 0.0, R], d, &suns, rng, out);
+        })
+        .into_iter()
+        .map(|e| Estimate {
             mean: PI * e.mean,
             std_error: PI * e.std_error,
-        }
+        })
+        .collect()
     }
 
     /// The sunlight the atmosphere and the ground send back out through the top of the
@@ -342,12 +387,12 @@ impl MonteCarlo {
         for k in 0..n {
             #[allow(clippy::cast_precision_loss)]
             let (lo, width) = (-1.0 + 2.0 * k as f64 / n as f64, 2.0 / n as f64);
-            let e = self.estimate(paths / n, seed.wrapping_add(k as u64), |rng| {
+            let e = self.estimate(paths / n, seed.wrapping_add(k as u64), |rng, out| {
                 let cos_zenith = lo + width * rng.random::<f64>();
                 let sun = around([0.0, 0.0, 1.0], cos_zenith, 0.0);
                 let mu = -rng.random::<f64>().sqrt();
                 let d = around([0.0, 0.0, 1.0], mu, 2.0 * PI * rng.random::<f64>());
-                self.path([0.0, 0.0, RT], d, sun, rng)
+                self.path([0.0, 0.0, RT], d, &[sun], rng, out);
             });
             #[allow(clippy::cast_precision_loss)]
             let share = 1.0 / n as f64;
