@@ -170,7 +170,8 @@ impl Default for Settings {
 pub struct Step {
     /// The sun ([`Settings::sun`]'s algorithm: geometric and apparent zenith, compass azimuth).
     pub sun: SunPosition,
-    /// The clear-sky daylight at this time and place (global, diffuse, direct, melanopic EDI).
+    /// The clear-sky daylight at this time and place (global, diffuse, direct, melanopic EDI),
+    /// on this day's Earth-Sun distance ([`Daylight::on_day`]).
     pub daylight: Daylight,
     /// The followed light's illuminance on a horizontal plane, CIE XYZ with Y in lux: the
     /// clear sky's global or diffuse light ([`Light`]) without a measurement; with one, the
@@ -604,7 +605,8 @@ fn step_at(
             max: f32::MAX,
         });
     }
-    let daylight = Daylight::with_atmosphere(sun.sun(), &clear_atmosphere(site, settings))?;
+    let daylight = Daylight::with_atmosphere(sun.sun(), &clear_atmosphere(site, settings))?
+        .on_day(time.day_of_year());
     let clear = daylight.global() * clear_scale;
     let (followed, followed_melanopic) = match settings.light {
         Light::Global => (clear, daylight.melanopic_edi() * clear_scale),

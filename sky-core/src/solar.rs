@@ -423,10 +423,7 @@ pub fn compass_to_azimuth(compass_deg: f64) -> f64 {
 pub const SOLAR_CONSTANT: f32 = 1367.0;
 
 /// The extraterrestrial irradiance on a plane facing the sun, W/m², on day `day_of_year`
-/// (1-366; other values wrap): [`SOLAR_CONSTANT`] times the eccentricity correction
-/// (R₀/R)² of Spencer's Fourier series (Spencer, *Fourier series representation of the position
-/// of the sun*, Search 2(5), 1971), with the day angle Γ = 2π (n − 1) / 365:
-/// 1.000110 + 0.034221 cos Γ + 0.001280 sin Γ + 0.000719 cos 2Γ + 0.000077 sin 2Γ.
+/// (1-366; other values wrap): [`SOLAR_CONSTANT`] times [`earth_sun_distance_factor`].
 /// Between 1322 W/m² (early July) and 1415 W/m² (early January).
 ///
 /// ```
@@ -434,12 +431,37 @@ pub const SOLAR_CONSTANT: f32 = 1367.0;
 /// assert!((january - 1415.0).abs() < 1.0);
 /// ```
 #[must_use]
-#[allow(clippy::cast_precision_loss)] // day numbers are small
 pub fn extraterrestrial_irradiance(day_of_year: u32) -> f32 {
+    SOLAR_CONSTANT * earth_sun_distance_factor(day_of_year)
+}
+
+/// The eccentricity correction (R₀/R)² on day `day_of_year` (1-366; other values wrap): how
+/// much more sunlight reaches the top of the atmosphere than at the mean Earth-Sun distance
+/// R₀ (1 AU), by Spencer's Fourier series (Spencer, *Fourier series representation of the
+/// position of the sun*, Search 2(5), 1971), with the day angle Γ = 2π (n − 1) / 365:
+/// 1.000110 + 0.034221 cos Γ + 0.001280 sin Γ + 0.000719 cos 2Γ + 0.000077 sin 2Γ. From
+/// 0.967 (early July, aphelion) to 1.035 (early January, perihelion).
+///
+/// ```
+/// let january = sky_core::solar::earth_sun_distance_factor(3);
+/// let july = sky_core::solar::earth_sun_distance_factor(185);
+/// assert!((january - 1.035).abs() < 1e-3 && (july - 0.9666).abs() < 1e-3);
+/// ```
+#[must_use]
+#[allow(clippy::cast_precision_loss)] // day numbers are small
+pub fn earth_sun_distance_factor(day_of_year: u32) -> f32 {
     let gamma = core::f32::consts::TAU * (day_of_year.saturating_sub(1) % 366) as f32 / 365.0;
-    let (s1, c1) = (math::sin(gamma), math::cos(gamma));
+    // One libm call (its f32 sine and cosine evaluate in soft f64 on an f32-only FPU): sin Γ
+    // from cos Γ, its sign from the half of the year.
+    let c1 = math::cos(gamma);
+    let s1 = math::sqrt(math::at_least(1.0 - c1 * c1, 0.0));
+    let s1 = if gamma > core::f32::consts::PI {
+        -s1
+    } else {
+        s1
+    };
     let (s2, c2) = (2.0 * s1 * c1, c1 * c1 - s1 * s1);
-    SOLAR_CONSTANT * (1.000_11 + 0.034_221 * c1 + 0.001_280 * s1 + 0.000_719 * c2 + 0.000_077 * s2)
+    1.000_11 + 0.034_221 * c1 + 0.001_280 * s1 + 0.000_719 * c2 + 0.000_077 * s2
 }
 
 /// The relative optical air mass at sun zenith angle `zenith` (radians), by Kasten's formula
@@ -467,6 +489,22 @@ pub fn relative_air_mass(zenith: f32) -> f32 {
 
 #[cfg(test)]
 mod tests {
+    /// Spencer's series with one libm cosine and the sine from it, against the series in f64
+    /// with both (every day of a leap year).
+    #[test]
+    fn earth_sun_distance_factor_matches_the_series_in_f64() {
+        for day in 1..=366u32 {
+            let g = core::f64::consts::TAU * f64::from(day - 1) / 365.0;
+            let f = 1.000_11
+                + 0.034_221 * g.cos()
+                + 0.001_280 * g.sin()
+                + 0.000_719 * (2.0 * g).cos()
+                + 0.000_077 * (2.0 * g).sin();
+            let got = f64::from(earth_sun_distance_factor(day));
+            assert!((got - f).abs() < 1e-6, "day {day}: {got} against {f}");
+        }
+    }
+
     use super::*;
 
     #[test]

@@ -64,6 +64,7 @@ fn lux_reading(time: &UtcTime, t: f64) -> f32 {
     let atmosphere = clear_atmosphere(&vienna(), &settings());
     let clear = Daylight::with_atmosphere(sun.sun(), &atmosphere)
         .expect("clear")
+        .on_day(time.day_of_year())
         .global()
         .y;
     let f = cloud_factor(t);

@@ -20,12 +20,30 @@ struct Row {
     clear: bool,
 }
 
-/// A station's fixture: its site, reading interval and rows.
+/// A station's fixture: its site, reading interval and rows, and the controller's settings
+/// with the site's clear sky of the month, as `sky-train schedule` takes it by default.
 struct Station {
     name: &'static str,
     site: Site,
     interval: u32,
     rows: Vec<Row>,
+    settings: Settings,
+}
+
+/// The controller's settings at (`lat`, `lon`, `elevation`) in `month`: the site climatology's
+/// aerosol optical depth (clamped to the daylight tables' range), ozone column and
+/// precipitable water (`sky_train::site`), the rest the defaults.
+#[allow(clippy::cast_possible_truncation)]
+fn site_settings(lat: f64, lon: f64, elevation: f64, month: u32) -> Settings {
+    let m = sky_train::site::site_month(lat, lon, Some(elevation), month).expect("a site");
+    let (lo, hi) = sky_core::daylight::OZONE_RANGE_DU;
+    Settings {
+        aerosol_optical_depth: (m.aod_550 as f32)
+            .clamp(sky_core::daylight::MIN_AOD, sky_core::daylight::MAX_AOD),
+        ozone_du: (m.ozone_du as f32).clamp(lo, hi),
+        precipitable_water: m.water_vapour_cm as f32,
+        ..Settings::default()
+    }
 }
 
 fn station(name: &'static str, lat: f64, lon: f64, elevation: f64, interval: u32) -> Station {
@@ -45,12 +63,14 @@ fn station(name: &'static str, lat: f64, lon: f64, elevation: f64, interval: u32
                 clear: f[4] == "1",
             }
         })
-        .collect();
+        .collect::<Vec<Row>>();
+    let month = rows[0].utc[5..7].parse().expect("a month");
     Station {
         name,
         site: Site::new(lat, lon, elevation).expect("site"),
         interval,
         rows,
+        settings: site_settings(lat, lon, elevation, month),
     }
 }
 
@@ -149,7 +169,7 @@ struct Run {
 /// azimuth, day index)` (the sensor's fault), with `bounds`.
 fn run(s: &Station, bounds: Bounds, sensor: &dyn Fn(&Row, f64, f64, usize) -> f32) -> Run {
     let lamp = example_luminaire().expect("lamp");
-    let settings = Settings::default();
+    let settings = s.settings;
     #[allow(clippy::cast_possible_truncation)]
     let mut cal = SelfCalibration::new(
         criteria(s.interval),
@@ -257,10 +277,17 @@ fn self_calibration_on_measured_days() {
             );
         }
         if s.interval != 60 {
-            // NREL Golden in winter, 5-minute readings: 20-25 % above the default clear sky at
-            // midday, too far for the detector to find it clear before a level is learned
-            // (docs/weather.md): nothing is learned, and nothing is made up.
-            assert_eq!(on.calibration.level_unbounded(), None, "{}", s.name);
+            // NREL Golden in winter, 5-minute readings, two clear days of six: with the site's
+            // clear sky its clear days are found, and a level is learned after the first one
+            // (not `calibrated`: that takes three); the later clear minutes (one day) meet the
+            // issue's median, not its 95th percentile (docs/weather.md).
+            assert!(on.calibration.level_unbounded().is_some(), "{}", s.name);
+            let (n, med, _, _) = figures(&on, first);
+            assert!(
+                n > 50 && (0.97..=1.03).contains(&med),
+                "{}: {n}, {med}",
+                s.name
+            );
             continue;
         }
         // Issue 24's bounds on the later days' clear minutes, learned on the earlier days.
@@ -291,7 +318,8 @@ fn percentile_or_nan(v: &[f32], p: f64) -> f32 {
 
 /// Degraded sensors on the Payerne month: a shaded morning (the sun east of south and below
 /// 25° reads a quarter, the diffuse of an obstruction), a sensor soiled 10 % from the second
-/// half on, one miscalibrated +25 % and one −40 % from the start: bounded, flagged, not chased.
+/// half on, one miscalibrated +25 % and one −40 % from the start: bounded, flagged where a level
+/// is learned, not chased.
 #[test]
 fn degraded_sensors_stay_bounded_and_are_flagged() {
     let [payerne, _] = stations();
@@ -341,15 +369,12 @@ fn degraded_sensors_stay_bounded_and_are_flagged() {
     // Soiling after commissioning: followed, and flagged as drift.
     assert!((level(&dirty) / base - 0.9).abs() < 0.02);
     assert_eq!(dirty.calibration.status(), Status::Drifted);
-    // +25 % from the start: the detector finds no clear period 25-30 % above the clear sky's
-    // level before a level is learned (the mean and maximum criteria), so nothing is learned:
-    // the factor stays 1, not chased, but the status stays `learning` (not flagged).
-    for r in [&high, &high_narrow] {
+    // +25 % or −40 % from the start: the detector finds no clear period that far from the
+    // site's clear sky before a level is learned (the mean and maximum criteria), so nothing is
+    // learned: the factor stays 1, not chased, but the status stays `learning` (not flagged).
+    for r in [&high, &high_narrow, &low] {
         assert_eq!(r.calibration.level_unbounded(), None);
         assert_eq!(r.calibration.factor(40.0), 1.0);
         assert_eq!(r.calibration.status(), Status::Learning);
     }
-    // −40 %: flagged, the factor held at the bound.
-    assert_eq!(low.calibration.status(), Status::SensorSuspect);
-    assert!((0.75..=0.76).contains(&low.calibration.factor(40.0)));
 }

@@ -13,6 +13,7 @@
 //! date and configuration), this counts `sky_core::controller::step` as a whole and its parts
 //! called one by one as `step` calls them: the sun's position (the fast one, Grena 2012), the sky's constructor
 //! (`daylight::Daylight::with_atmosphere` at the site's elevation: the diffuse tables and the direct beam's 47 spectral bins), the
+//! day's Earth-Sun distance (`Daylight::on_day`: the day of the year and Spencer's series), the
 //! global light (their sum), chromaticity and CCT (`cct_duv`) and the LED drive levels; the parts' results must equal
 //! the whole step's bit for bit. It prints the minimum, median and maximum over the day of
 //! each, in instructions (the bracket's own instructions subtracted).
@@ -183,9 +184,10 @@ struct Counts {
     steps: [u32; STEPS],
 }
 
-/// Runs the day and fills `counts` (whole step, sun, sky, illuminance, CCT, drive); `Ok(false)`
+/// Runs the day and fills `counts` (whole step, sun, sky, the day's sunlight, illuminance, CCT,
+/// drive); `Ok(false)`
 /// if a part's result differs from the whole step's.
-fn run(counts: &mut [Counts; 6], per_instruction: f64, empty: u64) -> Result<bool, SkyError> {
+fn run(counts: &mut [Counts; 7], per_instruction: f64, empty: u64) -> Result<bool, SkyError> {
     let (year, month, day) = DATE;
     let site = Site::new(SITE.0, SITE.1, SITE.2)?;
     let lamp = example_luminaire()?;
@@ -215,6 +217,7 @@ fn run(counts: &mut [Counts; 6], per_instruction: f64, empty: u64) -> Result<boo
         let atmosphere = clear_atmosphere(&site, &settings);
         let (t_sky, sky) = measure(|| Daylight::with_atmosphere(sun.sun(), &atmosphere));
         let sky = sky?;
+        let (t_day, sky) = measure(|| sky.on_day(time.day_of_year()));
         let (t_lux, illuminance) = measure(|| sky.global());
         let (t_cct, (colour, cct)) = measure(|| {
             let colour = color::xyz_to_xyy(illuminance);
@@ -233,7 +236,7 @@ fn run(counts: &mut [Counts; 6], per_instruction: f64, empty: u64) -> Result<boo
             && whole.drive == drive;
         for (c, t) in counts
             .iter_mut()
-            .zip([t_step, t_sun, t_sky, t_lux, t_cct, t_drive])
+            .zip([t_step, t_sun, t_sky, t_day, t_lux, t_cct, t_drive])
         {
             c.steps[index] = instructions(t);
         }
@@ -263,6 +266,7 @@ fn main() -> ! {
         part("controller::step"),
         part("  sun position (Grena 2012)"),
         part("  daylight (Daylight::with_atmosphere)"),
+        part("  Earth-Sun distance (Daylight::on_day)"),
         part("  global light (Daylight::global)"),
         part("  chromaticity and CCT (cct_duv)"),
         part("  LED drive (Luminaire::drive)"),

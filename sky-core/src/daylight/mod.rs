@@ -214,6 +214,32 @@ impl Daylight {
         }
     }
 
+    /// The same daylight on day `day_of_year` (1-366; other values wrap) instead of at the
+    /// mean Earth-Sun distance: every illuminance and the melanopic EDI times (R₀/R)²
+    /// ([`crate::solar::earth_sun_distance_factor`], Spencer 1971), 1.035 in early January and
+    /// 0.967 in early July. The tables, like the reference they hold, are at 1 AU, as
+    /// [`Self::with_atmosphere`] gives them; a measured day's light is not (the controller's
+    /// clear sky is on the day of its step).
+    ///
+    /// ```
+    /// use sky_core::daylight::Daylight;
+    /// use sky_core::Sun;
+    ///
+    /// let mean = Daylight::clear(Sun::new(60f32.to_radians(), 0.0)?);
+    /// let january = mean.on_day(3);
+    /// assert!((january.global().y / mean.global().y - 1.035).abs() < 1e-3);
+    /// # Ok::<(), sky_core::SkyError>(())
+    /// ```
+    #[must_use]
+    pub fn on_day(self, day_of_year: u32) -> Self {
+        let f = crate::solar::earth_sun_distance_factor(day_of_year);
+        Self {
+            diffuse: self.diffuse.map(|e| e * f),
+            direct_normal: self.direct_normal.map(|e| e * f),
+            ..self
+        }
+    }
+
     /// The sun as given.
     #[must_use]
     pub fn sun(&self) -> Sun {
