@@ -123,7 +123,6 @@ mod clock {
     }
 }
 
-pub(crate) use clock::start;
 use clock::{spin, ticks};
 
 /// The ticks `f` takes, and its result.
@@ -136,7 +135,7 @@ pub(crate) fn measure<T>(f: impl FnOnce() -> T) -> (u64, T) {
 /// Ticks per instruction, and the ticks of an empty bracket; `None` unless the calibration
 /// loop's ticks grow in proportion to its length (not under `-icount`) and an instruction is at
 /// least one tick (a coarser count would be rounded).
-pub(crate) fn calibrate() -> Option<(f64, u64)> {
+fn calibrate() -> Option<(f64, u64)> {
     // The least of three runs of each: a SysTick wrap adds its handler to the run it falls in.
     let least = |f: &dyn Fn() -> u64| (0..3).map(|_| f()).min().unwrap_or(0);
     let empty = least(&|| measure(|| ()).0);
@@ -159,4 +158,23 @@ pub(crate) fn calibrate() -> Option<(f64, u64)> {
 )]
 pub(crate) fn instructions(ticks: u64, per_instruction: f64, empty: u64) -> u32 {
     (ticks.saturating_sub(empty) as f64 / per_instruction + 0.5) as u32
+}
+
+/// Starts the counter and calibrates it ([`calibrate`]): the ticks per instruction and of an
+/// empty bracket. On failure (the core peripherals taken, or no `-icount`) prints why, naming
+/// `example`, and ends the run as failed.
+pub(crate) fn start(example: &str) -> (f64, u64) {
+    if !clock::start() {
+        qemu_check::hprintln!("{}: FAIL: the core peripherals are taken", example);
+        qemu_check::finish(false)
+    }
+    let Some(calibration) = calibrate() else {
+        qemu_check::hprintln!(
+            "{}: FAIL: the counter does not count instructions; run under qemu with -icount \
+             shift=8,align=off,sleep=off",
+            example
+        );
+        qemu_check::finish(false)
+    };
+    calibration
 }

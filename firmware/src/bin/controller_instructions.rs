@@ -34,7 +34,7 @@ include!(concat!(env!("OUT_DIR"), "/controller_config.rs"));
 #[path = "../counter.rs"]
 mod counter;
 
-use counter::{calibrate, instructions, measure};
+use counter::{instructions, measure};
 
 const _: u8 = PWM_BITS; // the PWM levels are the controller example's, not counted here
 
@@ -98,18 +98,7 @@ fn run(counts: &mut [Counts; 6], per_instruction: f64, empty: u64) -> Result<boo
 
 #[entry]
 fn main() -> ! {
-    if !counter::start() {
-        hprintln!("controller-instructions: FAIL: the core peripherals are taken");
-        qemu_check::finish(false)
-    }
-
-    let Some((per_instruction, empty)) = calibrate() else {
-        hprintln!(
-            "controller-instructions: FAIL: the counter does not count instructions; run \
-             under qemu with -icount shift=8,align=off,sleep=off"
-        );
-        qemu_check::finish(false)
-    };
+    let (per_instruction, empty) = counter::start("controller-instructions");
     let part = |name| Counts {
         name,
         steps: [0; STEPS],
