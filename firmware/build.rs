@@ -5,20 +5,26 @@
 //! values it gives are written to `$OUT_DIR/expected.rs` (for `src/main.rs`) and
 //! `$OUT_DIR/expected_fixed.rs` (for `src/bin/fixed_neural.rs`), `$OUT_DIR/sh_expected.rs` and
 //! `$OUT_DIR/controller_expected.rs` (for `src/bin/controller.rs`),
-//! `$OUT_DIR/weather_expected.rs` (for `src/bin/weather_controller.rs`) and their shared
-//! `$OUT_DIR/controller_config.rs` (also for `src/bin/controller_instructions.rs`) as const
-//! tables, which the examples include and check against the same evaluation on the target.
+//! their shared `$OUT_DIR/controller_config.rs` (also for the instruction counters), the weather
+//! controllers' series of readings `$OUT_DIR/calibrated_series.rs` (for `src/weather.rs` and
+//! `src/bin/calibration_instructions.rs`) and its expected values with and without the
+//! self-calibration, `$OUT_DIR/calibrated_expected.rs` (for `src/bin/weather_controller.rs`)
+//! and `$OUT_DIR/uncalibrated_expected.rs` (for `src/bin/weather_controller_uncalibrated.rs`),
+//! as const tables, which the examples include and check against the same evaluation on the
+//! target.
 
 use std::error::Error;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::{env, fs};
 
-use sky_core::controller::{self, Measurement};
+use sky_core::clear_period::Criteria;
+use sky_core::controller::{self, History, Measurement};
 use sky_core::led::Luminaire;
 use sky_core::neural::{FixedNeuralSky, NeuralSky, fixed, pretrained};
+use sky_core::self_calibration::{Bounds, Calibrated, SelfCalibration, Status};
 use sky_core::sh::ShSky;
-use sky_core::solar::{Site, SunAlgorithm, SunPosition, UtcTime};
+use sky_core::solar::{Site, SunAlgorithm, UtcTime};
 use sky_core::{PreethamSky, Sun, Vec3, geom};
 
 /// Sun zenith angles of the cases, in degrees.
@@ -72,7 +78,19 @@ fn main() -> Result<(), Box<dyn Error>> {
         controller_expected_table()?,
     )?;
     fs::write(out.join("controller_config.rs"), controller_config())?;
-    fs::write(out.join("weather_expected.rs"), weather_expected_table()?)?;
+    let series = calibrated_series()?;
+    fs::write(
+        out.join("calibrated_series.rs"),
+        series_readings_table(&series),
+    )?;
+    fs::write(
+        out.join("calibrated_expected.rs"),
+        series_expected_table(&series, true)?,
+    )?;
+    fs::write(
+        out.join("uncalibrated_expected.rs"),
+        series_expected_table(&series, false)?,
+    )?;
     Ok(())
 }
 
@@ -392,10 +410,9 @@ fn controller_config() -> String {
     )
 }
 
-/// The synthesized sky of the sensor-driven example: the reading over the clear-sky value at
-/// `hours` UTC. Clear until 08:00 (the reading then equals the clear-sky value), a passing cloud
-/// to 08:30 (down to 0.4), clear again until 10:00, clouding over until 12:00, overcast (0.25)
-/// afterwards.
+/// The synthesized sky of the weather controllers' last day: the reading over the clear day's
+/// at `hours` UTC. Clear until 08:00, a passing cloud to 08:30 (down to 0.4), clear again until
+/// 10:00, clouding over until 12:00, overcast (0.25) afterwards.
 fn cloud_factor(hours: f32) -> f32 {
     use core::f32::consts::PI;
     match hours {
@@ -407,69 +424,212 @@ fn cloud_factor(hours: f32) -> f32 {
     }
 }
 
-/// The readings of step `index` at `minute`: a lux sensor, a pyranometer, and a pyranometer
-/// pair in turn; the lux equal to the clear sky's times the cloud factor, the irradiance a
-/// stand-in of 1000 cos Z W/m² times it (sky-core has no clear-sky irradiance model), the
-/// diffuse from half of it under a clear sky to all of it under the overcast.
-fn weather_reading(
-    index: usize,
-    minute: u32,
-    sun: &SunPosition,
-) -> Result<Measurement, Box<dyn Error>> {
-    #[allow(clippy::cast_precision_loss)] // minutes of a day
-    let f = cloud_factor(minute as f32 / 60.0);
-    #[allow(clippy::cast_possible_truncation)]
-    let cos_z = (sun.zenith_deg().to_radians().cos() as f32).max(0.0);
-    let g = 1000.0 * cos_z * f;
-    Ok(match index % 3 {
-        0 => {
-            let clear = controller::clear_sky_illuminance(sun, CONTROLLER_AOD)?.y;
-            Measurement::GlobalIlluminance(if f == 1.0 { clear } else { clear * f })
-        }
-        1 => Measurement::GlobalIrradiance(g),
-        _ => Measurement::Irradiance {
-            global: g,
-            diffuse: g * (0.5 + 0.5 * (1.0 - f) / 0.75).min(1.0),
-        },
-    })
+/// The calibrated series' dates: three clear days, then, after a restart, the controller
+/// example's day with its passing cloud and overcast afternoon ([`cloud_factor`]).
+const SERIES_DATES: [(i32, u32, u32); 4] =
+    [(2026, 3, 17), (2026, 3, 18), (2026, 3, 19), CONTROLLER_DATE];
+/// The day of [`SERIES_DATES`] before which the firmware restarts: the self-calibration's
+/// state saved (`to_bytes`) and restored (`from_bytes`), the rest of RAM lost (DIRINT's
+/// history among it).
+const SERIES_RESTART_DAY: usize = 3;
+
+/// The sensor's clear-day reading over the clear sky's irradiance with the sun `elevation_deg`
+/// high: 1.05 + 0.1 (1 − sin e), a site cleaner than the default atmosphere (τ₅₅₀ 0.38), more
+/// so with the sun low, as the measured stations are (`docs/weather.md`, "Self-calibration").
+fn sensor_level(elevation_deg: f64) -> f64 {
+    1.05 + 0.1 * (1.0 - elevation_deg.to_radians().sin().max(0.0))
 }
 
-/// Rust source of the sensor-driven example's `STEPS`: every step of the controller example's
-/// day with a synthesized reading, and what [`controller::step`] gives for it on the host.
-fn weather_expected_table() -> Result<String, Box<dyn Error>> {
-    let (site, lamp, times) = controller_day()?;
+/// The weather controllers' series: the UTC time and the reading of every step, every
+/// [`CONTROLLER_STEP_MIN`] minutes from 00:00 UTC of each of [`SERIES_DATES`]. The sensors
+/// take turns as a lux sensor, a pyranometer and a pyranometer pair (global and diffuse); on a
+/// clear day they read the clear sky ([`controller::clear_sky_illuminance`] in lux,
+/// [`controller::clear_sky_irradiance`] of it in W/m²) times [`sensor_level`], on the last day
+/// times [`cloud_factor`] too; the pair's diffuse is the clear sky's share of it (its diffuse
+/// illuminance over its global), rising to all of it as the cloud thickens (factor 0.25).
+fn calibrated_series() -> Result<Vec<(UtcTime, Measurement)>, Box<dyn Error>> {
+    let (site, _, _) = controller_day()?;
+    let mut series = Vec::new();
+    for (day_index, &(year, month, day)) in SERIES_DATES.iter().enumerate() {
+        for minute in (0..24 * 60).step_by(usize::try_from(CONTROLLER_STEP_MIN)?) {
+            let time = UtcTime::new(year, month, day, minute / 60, minute % 60, 0.0)?;
+            let sun = controller_settings().sun.position(&time, &site)?;
+            let daylight = sky_core::daylight::Daylight::new(sun.sun(), CONTROLLER_AOD)?;
+            let clear_lux = daylight.global().y;
+            let clear =
+                controller::clear_sky_irradiance(clear_lux, sun.sun().zenith(), time.day_of_year());
+            #[allow(clippy::cast_precision_loss)] // minutes of a day
+            let cloud = if day_index + 1 == SERIES_DATES.len() {
+                f64::from(cloud_factor(minute as f32 / 60.0))
+            } else {
+                1.0
+            };
+            let level = sensor_level(sun.elevation_deg()) * cloud;
+            let clear_share = if clear_lux > 0.0 {
+                f64::from(daylight.diffuse().y / clear_lux)
+            } else {
+                1.0
+            };
+            // As sensors report them, in f32.
+            #[allow(clippy::cast_possible_truncation)]
+            let reading = match series.len() % 3 {
+                0 => Measurement::GlobalIlluminance((f64::from(clear_lux) * level) as f32),
+                1 => Measurement::GlobalIrradiance((f64::from(clear) * level) as f32),
+                _ => {
+                    let global = f64::from(clear) * level;
+                    let share = clear_share + (1.0 - clear_share) * (1.0 - cloud) / 0.75;
+                    Measurement::Irradiance {
+                        global: global as f32,
+                        diffuse: (global * share.min(1.0)) as f32,
+                    }
+                }
+            };
+            series.push((time, reading));
+        }
+    }
+    Ok(series)
+}
+
+/// The calibrated series' settings: the controller examples' with the default separation
+/// model (DIRINT, with its history).
+fn series_settings() -> controller::Settings {
+    controller::Settings {
+        decomposition: controller::Decomposition::Dirint,
+        ..controller_settings()
+    }
+}
+
+/// The self-calibration of the series: Jordan & Hansen 2023's criteria for its interval, the
+/// site's longitude, the default bounds.
+fn series_calibration() -> Result<(Criteria, u32, f32, Bounds), Box<dyn Error>> {
+    #[allow(clippy::cast_precision_loss)] // 10
+    let criteria = Criteria::jordan_hansen_2023(CONTROLLER_STEP_MIN as f32)?;
+    #[allow(clippy::cast_possible_truncation)] // degrees
+    let longitude = CONTROLLER_SITE.1 as f32;
+    Ok((
+        criteria,
+        60 * CONTROLLER_STEP_MIN,
+        longitude,
+        Bounds::DEFAULT,
+    ))
+}
+
+/// A status as the firmware stores it: 0 learning, 1 calibrated, 2 drifted, 3 sensor suspect.
+fn status_code(status: Status) -> u8 {
+    match status {
+        Status::Learning => 0,
+        Status::Calibrated => 1,
+        Status::Drifted => 2,
+        Status::SensorSuspect => 3,
+    }
+}
+
+/// Rust source of the series' configuration and readings (`calibrated_series.rs`).
+fn series_readings_table(series: &[(UtcTime, Measurement)]) -> String {
+    let readings: Vec<String> = series
+        .iter()
+        .map(|(_, r)| match *r {
+            Measurement::GlobalIlluminance(v) => format!("Measurement::GlobalIlluminance({v:?})"),
+            Measurement::GlobalIrradiance(v) => format!("Measurement::GlobalIrradiance({v:?})"),
+            Measurement::Irradiance { global, diffuse } => {
+                format!("Measurement::Irradiance {{ global: {global:?}, diffuse: {diffuse:?} }}")
+            }
+        })
+        .collect();
+    format!(
+        "// Generated by firmware/build.rs from sky-core on the host; do not edit.\n\
+         /// The series' UTC dates (year, month, day), each stepped every `STEP_MINUTES` from 00:00.\n\
+         const SERIES_DATES: [(i32, u32, u32); {}] = {SERIES_DATES:?};\n\
+         /// The day before which the firmware restarts (the calibration's state saved and restored).\n\
+         const SERIES_RESTART_DAY: usize = {SERIES_RESTART_DAY};\n\
+         /// The reading of each step: lux (a lux sensor) or W/m² (a pyranometer, a pair).\n\
+         #[allow(clippy::approx_constant, clippy::unreadable_literal)] // computed values, as printed\n\
+         const READINGS: [Measurement; {}] = [{}];\n",
+        SERIES_DATES.len(),
+        series.len(),
+        readings.join(", ")
+    )
+}
+
+/// Rust source of the series' expected values (`SERIES`): every step of [`calibrated_series`]
+/// through [`controller::step_calibrated`] with a [`SelfCalibration`] carried across the restart
+/// in its bytes (`SAVED_STATE`, the bytes saved there), or, with `calibrated` false, through
+/// [`controller::step_with_history`] alone (the build whose flash the calibrated one's is
+/// compared with); DIRINT's history is lost at the restart in both.
+fn series_expected_table(
+    series: &[(UtcTime, Measurement)],
+    calibrated: bool,
+) -> Result<String, Box<dyn Error>> {
+    let (site, lamp, _) = controller_day()?;
+    let settings = series_settings();
+    let (criteria, interval, longitude, bounds) = series_calibration()?;
+    let mut cal = SelfCalibration::new(criteria, interval, longitude, bounds)?;
+    let mut history = History::new();
+    let steps_per_day = series.len() / SERIES_DATES.len();
+    let mut saved = None;
     let mut steps = String::new();
-    let mut count = 0;
-    for (index, (minute, time)) in times.into_iter().enumerate() {
-        let sun = controller_settings().sun.position(&time, &site)?;
-        let reading = weather_reading(index, minute, &sun)?;
-        let s = controller::step(&time, &site, &controller_settings(), &lamp, Some(reading))?;
-        let (cct_k, duv) = cct_or_zero(&s);
-        let w = s.weather.ok_or("a measured step has its weather")?;
-        let pwm = s.drive.quantise(CONTROLLER_PWM_BITS)?;
-        let (kind, a, b) = match reading {
-            Measurement::GlobalIlluminance(v) => (0, v, 0.0),
-            Measurement::GlobalIrradiance(v) => (1, v, 0.0),
-            Measurement::Irradiance { global, diffuse } => (2, global, diffuse),
+    for (index, &(time, reading)) in series.iter().enumerate() {
+        if index == SERIES_RESTART_DAY * steps_per_day {
+            history = History::new();
+            if calibrated {
+                let bytes = cal.to_bytes();
+                cal = SelfCalibration::from_bytes(&bytes, criteria, interval, longitude, bounds)?;
+                saved = Some(bytes);
+            }
+        }
+        let m = reading;
+        let (s, c) = if calibrated {
+            controller::step_calibrated(&time, &site, &settings, &lamp, m, &mut cal, &mut history)?
+        } else {
+            let s = controller::step_with_history(
+                &time,
+                &site,
+                &settings,
+                &lamp,
+                Some(m),
+                &mut history,
+            )?;
+            let nothing = Calibrated {
+                factor: 1.0,
+                verdict: sky_core::clear_period::Verdict::default(),
+                status: Status::Learning,
+            };
+            (s, nothing)
         };
+        let w = s.weather.ok_or("a measured step has its weather")?;
         writeln!(
             steps,
-            "    Expected {{ minute: {minute}, kind: {kind}, reading: {a:?}, diffuse: {b:?}, \
-             lux: {:?}, cct_k: {:?}, duv: {:?}, sky_type: {}, clear_sky_index: {:?}, \
-             levels: {:?}, pwm: {pwm:?} }},",
+            "    SeriesExpected {{ lux: {:?}, cct_k: {:?}, duv: {:?}, diffuse: {:?}, \
+             clear_sky_index: {:?}, clear_sky_factor: {:?}, factor: {:?}, levels: {:?}, \
+             pwm: {:?}, sky_type: {}, status: {}, newly_clear: {} }},",
             s.illuminance.y,
-            cct_k,
-            duv,
-            w.sky_type,
+            cct_or_zero(&s).0,
+            cct_or_zero(&s).1,
+            w.diffuse_irradiance,
             w.clear_sky_index.unwrap_or(-1.0),
+            w.clear_sky_factor,
+            c.factor,
             s.drive.levels,
+            s.drive.quantise(CONTROLLER_PWM_BITS)?,
+            w.sky_type,
+            status_code(c.status),
+            u8::try_from(c.verdict.newly_clear)?,
         )?;
-        count += 1;
     }
+    let state = match saved {
+        Some(bytes) => format!(
+            "/// The self-calibration's state saved at the restart ({} bytes).\n\
+             const SAVED_STATE: [u8; {}] = {bytes:?};\n",
+            bytes.len(),
+            bytes.len()
+        ),
+        None => String::new(),
+    };
     Ok(format!(
         "// Generated by firmware/build.rs from sky-core on the host; do not edit.\n\
-         /// Every step of the day with its reading and the values the host computed for it.\n\
+         /// Every step of the calibrated series and the values the host computed for it.\n\
          #[allow(clippy::approx_constant, clippy::unreadable_literal)] // computed values, as printed\n\
-         const STEPS: [Expected; {count}] = [\n{steps}];\n"
+         const SERIES: [SeriesExpected; {}] = [\n{steps}];\n{state}",
+        series.len()
     ))
 }

@@ -4,13 +4,18 @@
 # skies on a Cortex-M4F (mps2-an386), the fixed-point neural sky on a Cortex-M3 (lm3s6965evb)
 # and a Cortex-M0 (microbit), and the lighting controller's day on all three; every example on
 # RISC-V (riscv32imac, qemu-system-riscv32's virt machine) and the controller's day on
-# riscv32imc (no atomics) too. The sensor-driven controller day runs on the Cortex-M4F, the
-# Cortex-M3 and RISC-V. The controller's flash on the Cortex-M0 is held to 48,000 B (decimal
-# kilobytes, not KiB), and what it is made of is printed (the largest symbols).
+# riscv32imc (no atomics) too. The sensor-driven controller (four days through the
+# self-calibration, its state carried across a restart) runs on the Cortex-M4F, the Cortex-M3
+# and RISC-V, with and without the self-calibration. The controller's flash on the Cortex-M0 is
+# held to 48,000 B (decimal kilobytes, not KiB), and what it is made of is printed (the largest
+# symbols); then the measured lines (`measured | ...`): that flash, the weather controller's
+# with and without the self-calibration and their difference, and the estimator's RAM as each
+# board printed it.
 #
 # Then it counts the lighting controller's executed instructions per step on the three
-# Cortex-M cores and on RISC-V, under qemu's -icount
-# (firmware/src/bin/controller_instructions.rs): `scripts/cross.sh instructions` does only that.
+# Cortex-M cores and on RISC-V, and per calibrated step on the Cortex-M4F, the M3 and RISC-V,
+# under qemu's -icount (firmware/src/bin/controller_instructions.rs,
+# calibration_instructions.rs): `scripts/cross.sh instructions` does only that.
 #
 # Uses Debian's rustc-web with -Zbuild-std (shared/DESIGN.md, "Toolchains"); the settings live in
 # scripts/cross/config.toml (workspace builds) and firmware/.cargo/config.toml (the firmware).
@@ -45,7 +50,7 @@ export RUSTC_BOOTSTRAP=1
 
 # Builds firmware binary $4 for target $1 (features $5, may be empty), prints its size and runs it
 # under qemu on machine $2 with CPU $3 and any further qemu arguments; fails the script unless
-# it exits 0.
+# it exits 0. What it printed is kept beside the ELF (<elf>.qemu.log) for the measured lines.
 firmware() {
   local target=$1 machine=$2 cpu=$3 bin=$4 features=${5:-}
   shift 5
@@ -71,8 +76,9 @@ firmware() {
   [ "$machine" = microbit ] && cpu_args=()
   case "$target" in riscv32*) qemu_bin=$qemu_riscv cpu_args=(-cpu "$cpu" -bios none) ;; esac
   local status=0
+  # With pipefail, the pipeline's status is qemu's (or timeout's) unless tee fails.
   timeout 120 "$qemu_bin" -machine "$machine" "${cpu_args[@]}" -nographic "$@" \
-    -semihosting-config enable=on,target=native -kernel "$elf" || status=$?
+    -semihosting-config enable=on,target=native -kernel "$elf" | tee "$elf.qemu.log" || status=$?
   if [ "$status" -ne 0 ]; then
     [ "$status" -eq 124 ] && echo "FAIL: qemu timed out after 120 s" >&2
     echo "FAIL: $bin on $machine exited with status $status" >&2
@@ -119,12 +125,15 @@ runs=(
   "thumbv7em-none-eabihf mps2-an386 cortex-m4 controller"              # controller's day, FPU
   "thumbv7m-none-eabi lm3s6965evb cortex-m3 controller"                # the same, soft float
   "thumbv6m-none-eabi microbit cortex-m0 controller"                   # the same, ARMv6-M
-  "thumbv7em-none-eabihf mps2-an386 cortex-m4 weather-controller"      # sensor-driven day, FPU
+  "thumbv7em-none-eabihf mps2-an386 cortex-m4 weather-controller"      # sensors, calibrated, FPU
   "thumbv7m-none-eabi lm3s6965evb cortex-m3 weather-controller"        # the same, soft float
+  "thumbv7em-none-eabihf mps2-an386 cortex-m4 weather-controller-uncalibrated" # without the
+  "thumbv7m-none-eabi lm3s6965evb cortex-m3 weather-controller-uncalibrated"   # calibration
   "riscv32imac-unknown-none-elf virt rv32 sky-firmware"                # RISC-V: every example
   "riscv32imac-unknown-none-elf virt rv32 fixed-neural"
   "riscv32imac-unknown-none-elf virt rv32 controller"
   "riscv32imac-unknown-none-elf virt rv32 weather-controller"
+  "riscv32imac-unknown-none-elf virt rv32 weather-controller-uncalibrated"
   "riscv32imc-unknown-none-elf virt rv32 controller"                   # RV32 without atomics
 )
 for run in "${runs[@]}"; do
@@ -146,6 +155,26 @@ if [ "$flash" -gt "$controller_flash_limit" ]; then
   echo "FAIL: the controller's flash on the Cortex-M0 is over $controller_flash_limit B" >&2
   exit 1
 fi
+
+# The measured lines (docs/firmware.md, "Flash and RAM"; docs/weather.md, "Self-calibration"),
+# from the builds and runs above, so that they follow any change. Flash is text (`size`:
+# vectors, code and constants). The two weather controllers differ only in the estimator's
+# calls (firmware/src/weather.rs), so their difference is the self-calibration's flash: the
+# estimator and its clear-period detector, `step_calibrated`'s comparison with the clear sky,
+# the state's saving and restoring (and the example's message printing the saved bytes).
+step "firmware: measured (flash = text of the builds above; RAM as each board printed it)"
+text_of() { size "$1" | awk 'NR == 2 { print $1 }'; }
+echo "measured | flash | controller | Cortex-M0 (thumbv6m-none-eabi) | $flash B | limit $controller_flash_limit B"
+for board in "thumbv7em-none-eabihf Cortex-M4F" "thumbv7m-none-eabi Cortex-M3" \
+  "riscv32imac-unknown-none-elf RV32IMAC"; do
+  read -r target name <<<"$board"
+  release="$target_dir/$target/release"
+  with=$(text_of "$release/weather-controller")
+  without=$(text_of "$release/weather-controller-uncalibrated")
+  echo "measured | flash | weather-controller (with the self-calibration) | $name | $with B | without it (weather-controller-uncalibrated) $without B | the self-calibration $((with - without)) B"
+  grep -E '^(self-calibration RAM|the check.s tables)' "$release/weather-controller.qemu.log" |
+    sed "s/^/measured | ram and tables | $name | /"
+done
 fi # mode all
 
 # The controller step's executed instructions: under -icount every instruction advances the
@@ -161,5 +190,13 @@ instruction_runs=(
 for run in "${instruction_runs[@]}"; do
   read -r target machine cpu <<<"$run"
   firmware "$target" "$machine" "$cpu" controller-instructions "" -icount shift=8,align=off,sleep=off
+done
+# The calibrated step's (firmware/src/bin/calibration_instructions.rs), on the weather
+# controller's boards: the whole step, the peer without the calibration, and the estimator's
+# parts, over every step of its series and over those with the sun up.
+for run in "${instruction_runs[@]}"; do
+  read -r target machine cpu <<<"$run"
+  [ "$cpu" = cortex-m0 ] && continue # the weather controller's series is not run on the M0
+  firmware "$target" "$machine" "$cpu" calibration-instructions "" -icount shift=8,align=off,sleep=off
 done
 echo "cross: all passed"

@@ -546,6 +546,7 @@ pub fn step_with_history(
 ///
 /// # Errors
 /// Those of [`step`].
+#[inline] // as `step`: a firmware's constant settings (the fast sun) leave SPA out of its flash
 pub fn step_calibrated(
     time: &UtcTime,
     site: &Site,
