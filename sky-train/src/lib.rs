@@ -24,6 +24,7 @@ pub mod planckian;
 pub mod plot;
 pub mod reference;
 pub mod render;
+pub mod sampled_grid;
 pub mod sh;
 pub mod sources;
 pub mod study;
