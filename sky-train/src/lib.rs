@@ -12,6 +12,7 @@ pub mod commands;
 pub mod controller;
 pub mod csv_input;
 pub mod csv_output;
+pub mod daylight_planes;
 pub mod daylight_sky;
 pub mod daylight_tables;
 pub mod dispatch;
