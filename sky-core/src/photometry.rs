@@ -249,12 +249,16 @@ pub(crate) fn plane_integral<S: Photometry + ?Sized>(sky: &S, n: Vec3) -> Vec3 {
     if psi_hi <= psi_lo {
         return Vec3::ZERO;
     }
+    // sin β, cos β and the weight of every β node, once for every ψ.
+    let mut betas = [(0.0f32, 0.0f32, 0.0f32); 2 * GAUSS_LEGENDRE_16.len()];
+    for (slot, (beta, wb)) in betas.iter_mut().zip(nodes(-FRAC_PI_2, FRAC_PI_2)) {
+        *slot = (math::sin(beta), math::cos(beta), wb);
+    }
     let mut sum = Vec3::ZERO;
     for (psi, wp) in nodes(psi_lo, psi_hi) {
         let (sp, cp) = (math::sin(psi), math::cos(psi));
         let front = cp * n + sp * e;
-        for (beta, wb) in nodes(-FRAC_PI_2, FRAC_PI_2) {
-            let (sb, cb) = (math::sin(beta), math::cos(beta));
+        for &(sb, cb, wb) in &betas {
             let d = cb * front + sb * a;
             // n · d = cos β cos ψ; dω = cos β dβ dψ.
             sum += (wp * wb * cb * cb * cp) * sky.xyz(d);
