@@ -372,7 +372,9 @@ fn diffuse(h_deg: f32, aod: f32) -> [f32; 4] {
 /// The diffuse table's stencil in the optical depth `aod`: its first node and the Lagrange
 /// weights, quadratic in ln τ, of it and the next two (the interval's ends and the node before
 /// it, or after it for the first interval: the interpolant passes through every node, so it
-/// is continuous in τ). Every table against τ shares it.
+/// is continuous in τ). Every table against τ shares it (inlined: the controller's step
+/// calls it once, through [`Daylight::new`]).
+#[inline(always)]
 fn aod_stencil(aod: f32) -> (usize, [f32; 3]) {
     let ln_aod = tables::AOD.map(math::ln);
     let (ia, _) = bracket(&ln_aod, math::ln(aod));
