@@ -569,8 +569,9 @@ const TILTED: [Plane; 9] = [
 const PLANE_SUN_AZIMUTH: f64 = 2.3;
 
 /// One plane's error: the model's illuminance (Y) over the reference's, less 1, and the
-/// largest difference of x or y; and the error the daylight sky's own quadrature would have
-/// (its 256-direction rule in place of the sky's share of `Daylight::tilted`).
+/// largest difference of x or y; and the errors the daylight sky's own quadrature (its
+/// 256-direction rule) and an isotropic sky, E_d (1 + n_z) / 2, would have in place of the
+/// sky's share of `Daylight::tilted`.
 #[derive(Debug, Clone, Copy)]
 struct PlaneError {
     aod: f64,
@@ -579,6 +580,7 @@ struct PlaneError {
     relative: f64,
     chromaticity: f64,
     quadrature: f64,
+    isotropic: f64,
 }
 
 /// `Daylight::tilted` against the reference's own `tilted_irradiance` (the same sun, sky and
@@ -616,10 +618,13 @@ fn plane_errors<const N: usize>(
                 #[allow(clippy::cast_possible_truncation)]
                 let n = sky_core::Vec3::from_array(normals[k].map(|v| v as f32));
                 let model = day.tilted(n).to_array().map(f64::from);
-                // The beam and the ground as `tilted` has them, the sky by the quadrature.
-                let quadrature = day.direct_normal() * n.dot(day.sun().direction()).max(0.0)
-                    + day.global() * (daylight::GROUND_ALBEDO * 0.5 * (1.0 - n.z))
-                    + networks.plane_illuminance(n).expect("unit normal");
+                // The beam and the ground as `tilted` has them, the sky by the quadrature or
+                // isotropic.
+                let beam_and_ground = day.direct_normal() * n.dot(day.sun().direction()).max(0.0)
+                    + day.global() * (daylight::GROUND_ALBEDO * 0.5 * (1.0 - n.z));
+                let quadrature =
+                    beam_and_ground + networks.plane_illuminance(n).expect("unit normal");
+                let isotropic = beam_and_ground + day.diffuse() * (0.5 * (1.0 + n.z));
                 let r = Colorimetry::of(&reference[k]);
                 let xy = |c: [f64; 3]| {
                     let s = c[0] + c[1] + c[2];
@@ -633,6 +638,7 @@ fn plane_errors<const N: usize>(
                     relative: model[1] / r.xyz[1] - 1.0,
                     chromaticity: (m.0 - rr.0).abs().max((m.1 - rr.1).abs()),
                     quadrature: f64::from(quadrature.y) / r.xyz[1] - 1.0,
+                    isotropic: f64::from(isotropic.y) / r.xyz[1] - 1.0,
                 });
             }
         }
@@ -704,6 +710,17 @@ fn tilted_vertical_planes_at_the_issues_elevations() {
             100.0 * e.relative
         );
     }
+    let iso = errors
+        .iter()
+        .max_by(|a, b| a.isotropic.abs().total_cmp(&b.isotropic.abs()))
+        .expect("errors");
+    println!(
+        "  an isotropic sky instead: worst {:+.1} % (aod {}, sun {} deg, azimuth from the sun {} deg)",
+        100.0 * iso.isotropic,
+        iso.aod,
+        iso.elevation,
+        iso.plane.azimuth
+    );
     assert!(worst_plane("vertical planes at 5, 30, 60 deg", &errors) <= 0.02);
 }
 
