@@ -211,13 +211,14 @@ impl Daylight {
     ///   against sun elevation, optical depth and the plane's azimuth from the sun's, over its
     ///   diffuse light) times [`Self::diffuse`]; on a horizontal plane facing up
     ///   [`Self::diffuse`], facing down none; on a **tilted** plane, the daylight sky's radiance
-    ///   ([`Self::sky`]) integrated over the plane ([`plane_illuminance`](crate::photometry::Photometry::plane_illuminance)'s rule),
-    ///   scaled to agree with the horizontal and the vertical plane's exact values (the scale
-    ///   is blended between the two by sin β for a plane tilted by β ≤ 90°, the vertical
-    ///   plane's below it);
+    ///   ([`Self::sky`]) integrated over the plane by the rule of
+    ///   [`Photometry::plane_illuminance`](crate::photometry::Photometry::plane_illuminance),
+    ///   scaled to agree with the horizontal and the vertical plane's values (the scale goes
+    ///   from the horizontal's to the vertical's as sin β for a plane tilted by β ≤ 90°, and is
+    ///   the vertical's below);
     /// * the ground's light, ρ E_g (1 − n_z) / 2 with ρ = [`GROUND_ALBEDO`] and E_g =
-    ///   [`Self::global`]: a uniform Lambertian ground (the reference's and its tables' ground),
-    ///   whose reflection of the sky back down the tables' diffuse light already holds.
+    ///   [`Self::global`]: a uniform Lambertian ground, the reference's and its tables' (whose
+    ///   diffuse light already holds the ground's reflection back down from the sky).
     ///
     /// Error of the illuminance against the reference's own tilted irradiance (sky-train's
     /// `PhysicalSky::tilted_irradiance`, the same sun, ground and sky) at sun elevations and
