@@ -72,7 +72,7 @@
 //! | the sun's position from UTC time and place (NREL SPA), as a [`Sun`] for any model | [`solar`] |
 //! | zenith luminance, horizontal and tilted-plane illuminance (lux), mean colour over a cone of view | [`photometry::Photometry`] |
 //! | correlated colour temperature and Duv (ANSI C78.377 sign) | [`cct`] |
-//! | the daylight at any sun elevation, twilight and night included: global, diffuse and direct illuminance (lux), colour, melanopic EDI, the sun's light, a tilted plane | [`daylight::Daylight`] |
+//! | the daylight at any sun elevation, twilight and night included: global, diffuse and direct illuminance (lux), colour, melanopic EDI, the sun's light, the light on a window or tilted plane (the anisotropic sky) | [`daylight::Daylight`] |
 //! | the clear sky's radiance per view direction from −18° to 90° (CIE XYZ, cd/m²), for rendering or a skylight panel's cone of view | [`daylight::DaylightSky`] |
 //! | LED channel levels (RGB, RGBW, warm + cool white), hue-keeping gamut clipping, PWM quantisation | [`led`] |
 //! | all of these for one time and place, as `sky-train schedule` and the firmware compute it, optionally driven by an outdoor sensor | [`controller::step`] |

@@ -19,6 +19,7 @@ use core::f32::consts::{FRAC_PI_2, PI, TAU};
 use glam::Vec3;
 
 use crate::color::{self, Xyy};
+use crate::daylight::DaylightSky;
 use crate::error::SkyError;
 use crate::math;
 use crate::neural::NeuralSky;
@@ -140,7 +141,7 @@ fn perpendicular(n: Vec3) -> Vec3 {
 
 /// Photometric quantities every sky model with an absolute luminance scale shares.
 ///
-/// Implemented for [`PreethamSky`], [`NeuralSky`],
+/// Implemented for [`PreethamSky`], [`NeuralSky`], [`DaylightSky`],
 /// [`crate::CieSky`] and [`crate::PerezSky`] (luminance in cd/m², so illuminance in lux; the
 /// last two compute their horizontal illuminance with a finer rule, 8-point Gauss-Legendre panels graded
 /// towards the sun). The AOAS sky is not: its luminance is in
@@ -232,7 +233,7 @@ pub trait Photometry {
 }
 
 /// ∫ XYZ(ω) (n · ω) dω over the sky in front of the unit normal `n` (module docs).
-fn plane_integral<S: Photometry + ?Sized>(sky: &S, n: Vec3) -> Vec3 {
+pub(crate) fn plane_integral<S: Photometry + ?Sized>(sky: &S, n: Vec3) -> Vec3 {
     // a: the plane's horizontal line; e completes (n, e, a); z = cos τ n + sin τ e, τ the tilt.
     let a = n
         .cross(Vec3::Z)
@@ -248,12 +249,16 @@ fn plane_integral<S: Photometry + ?Sized>(sky: &S, n: Vec3) -> Vec3 {
     if psi_hi <= psi_lo {
         return Vec3::ZERO;
     }
+    // sin β, cos β and the weight of every β node, once for every ψ.
+    let mut betas = [(0.0f32, 0.0f32, 0.0f32); 2 * GAUSS_LEGENDRE_16.len()];
+    for (slot, (beta, wb)) in betas.iter_mut().zip(nodes(-FRAC_PI_2, FRAC_PI_2)) {
+        *slot = (math::sin(beta), math::cos(beta), wb);
+    }
     let mut sum = Vec3::ZERO;
     for (psi, wp) in nodes(psi_lo, psi_hi) {
         let (sp, cp) = (math::sin(psi), math::cos(psi));
         let front = cp * n + sp * e;
-        for (beta, wb) in nodes(-FRAC_PI_2, FRAC_PI_2) {
-            let (sb, cb) = (math::sin(beta), math::cos(beta));
+        for &(sb, cb, wb) in &betas {
             let d = cb * front + sb * a;
             // n · d = cos β cos ψ; dω = cos β dβ dψ.
             sum += (wp * wb * cb * cb * cp) * sky.xyz(d);
@@ -265,6 +270,12 @@ fn plane_integral<S: Photometry + ?Sized>(sky: &S, n: Vec3) -> Vec3 {
 impl Photometry for PreethamSky {
     fn xyz(&self, dir: Vec3) -> Vec3 {
         PreethamSky::xyz(self, dir)
+    }
+}
+
+impl Photometry for DaylightSky {
+    fn xyz(&self, dir: Vec3) -> Vec3 {
+        DaylightSky::xyz(self, dir)
     }
 }
 

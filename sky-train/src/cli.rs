@@ -8,11 +8,12 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use crate::commands::{
-    self, SkyArgs, bench::BenchArgs, daylight::DaylightArgs, daylight_sky::DaylightSkyArgs,
-    daylight_tables::DaylightTablesArgs, eval::EvalArgs, export::ExportArgs, fit_aod::FitAodArgs,
-    fit_sh::FitShArgs, gallery::GalleryArgs, locus_table::LocusTableArgs, render::RenderArgs,
-    schedule::ScheduleArgs, showcase::ShowcaseArgs, site::SiteArgs, size_study::SizeStudyArgs,
-    spectrum::SpectrumArgs, train::TrainArgs,
+    self, SkyArgs, bench::BenchArgs, daylight::DaylightArgs, daylight_planes::DaylightPlanesArgs,
+    daylight_sky::DaylightSkyArgs, daylight_tables::DaylightTablesArgs, eval::EvalArgs,
+    export::ExportArgs, fit_aod::FitAodArgs, fit_sh::FitShArgs, gallery::GalleryArgs,
+    locus_table::LocusTableArgs, render::RenderArgs, schedule::ScheduleArgs,
+    showcase::ShowcaseArgs, site::SiteArgs, size_study::SizeStudyArgs, spectrum::SpectrumArgs,
+    train::TrainArgs,
 };
 
 /// The `sky-train` command line.
@@ -111,6 +112,10 @@ pub enum Command {
     /// depth; the direct beam's spectral constants) from the physical atmosphere: --sample
     /// samples the reference into --data (slow), then the Rust tables are written from it.
     DaylightTables(DaylightTablesArgs),
+    /// sky-core's table of the sky's light on vertical planes (against sun elevation, aerosol
+    /// optical depth and the plane's azimuth from the sun's) from the physical atmosphere:
+    /// --sample samples the reference into --data (slow), then the Rust table is written from it.
+    DaylightPlanes(DaylightPlanesArgs),
     /// Train sky-core's daylight neural sky on the physical atmosphere's radiance over its
     /// diffuse illuminance (sun zenith 0-108 deg, the tables' optical depths) and write its
     /// weight file.
@@ -156,6 +161,7 @@ pub fn execute(command: Command, input: &mut dyn BufRead, output: &mut dyn Write
         Command::Spectrum(args) => commands::spectrum::run(&args, output),
         Command::Daylight(args) => commands::daylight::run(&args, output),
         Command::DaylightTables(args) => commands::daylight_tables::run(&args, output),
+        Command::DaylightPlanes(args) => commands::daylight_planes::run(&args, output),
         Command::DaylightSky(args) => commands::daylight_sky::run(&args, output),
         Command::FitAod(args) => commands::fit_aod::run(&args, output),
         Command::Site(args) => commands::site::run(&args, output),

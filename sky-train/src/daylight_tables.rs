@@ -28,16 +28,15 @@
 //! steps of 1/4096) to keep them within the firmware's flash.
 
 use std::fmt::Write as _;
-use std::io::Write as _;
 use std::path::Path;
 
 use anyhow::Result;
 
-use crate::image_io::write_atomically;
 use crate::physical::constituents::{EARTH_RADIUS_M, N_WAVELENGTHS as NW, wavelength_nm};
 use crate::physical::photometry::channel_weights;
 use crate::physical::transport::{Medium, Transmittance};
 use crate::physical::{Atmosphere, Resolution, cache};
+use crate::sampled_grid;
 
 /// The aerosol optical depths at 550 nm the diffuse table is sampled at (a factor 2 apart;
 /// Preetham's turbidity 2 to 9 lies within).
@@ -302,25 +301,19 @@ pub struct DiffuseSample {
 /// # Errors
 /// When an atmosphere cannot be built or cached.
 pub fn sample(cache_dir: &cache::CacheDir, progress: bool) -> Result<Vec<DiffuseSample>> {
-    let elevations = elevation_nodes();
-    let mut out = Vec::with_capacity(AOD_NODES.len() * elevations.len());
-    for aod in AOD_NODES {
-        let atm = cache::load_or_build_in(
-            &atmosphere(aod),
-            &Resolution::default(),
-            Some(cache_dir),
-            progress,
-        )?;
-        for &h in &elevations {
-            let d = atm.sky(90.0 - h, 0.0)?.daylight().diffuse;
-            out.push(DiffuseSample {
+    sampled_grid::sample(
+        (cache_dir, progress),
+        (&AOD_NODES, atmosphere),
+        &elevation_nodes(),
+        |aod, h, sky| {
+            let d = sky.daylight().diffuse;
+            DiffuseSample {
                 aod,
                 elevation_deg: h,
                 xyzm: [d.xyz[0], d.xyz[1], d.xyz[2], d.melanopic_edi],
-            });
-        }
-    }
-    Ok(out)
+            }
+        },
+    )
 }
 
 /// The longest `--data` file read: the grid's rows take some 70 bytes each.
@@ -333,18 +326,13 @@ const HEADER: &str = "aod,sun_elevation_deg,x_lux,y_lux,z_lux,melanopic_edi_lux"
 /// # Errors
 /// When the file cannot be written.
 pub fn write_samples(path: &Path, samples: &[DiffuseSample]) -> Result<()> {
-    write_atomically(path, |f| {
-        let mut s = format!("{HEADER}\n");
-        for r in samples {
-            let _ = write!(s, "{},{}", r.aod, r.elevation_deg);
-            for v in r.xyzm {
-                let _ = write!(s, ",{v:.9e}");
-            }
-            s.push('\n');
-        }
-        f.write_all(s.as_bytes())?;
-        Ok(())
-    })
+    sampled_grid::write(
+        path,
+        HEADER,
+        samples
+            .iter()
+            .map(|r| (r.aod, r.elevation_deg, r.xyzm.as_slice())),
+    )
 }
 
 /// The range every illuminance of [`DATA_PATH`] must lie in, lux: positive, and at most
@@ -361,79 +349,25 @@ pub const SAMPLE_RANGE_LUX: (f64, f64) = (0.0, 2e5);
 /// first bad row or field, and for a file without the header or rows; a plain error when it
 /// cannot be read.
 pub fn read_samples(path: &Path) -> Result<Vec<DiffuseSample>> {
-    use crate::args::ParamError;
-    let bad =
-        |line: usize, what: String| ParamError(format!("{}: line {line}: {what}", path.display()));
-    // Bad input (exit 2): missing, not a regular file, longer than the grid can be, a line
-    // longer than the reader takes.
-    let input = crate::csv_input::read_lines(path, MAX_DATA_BYTES)
-        .map_err(|e| ParamError(format!("cannot read {}: {e}", path.display())))?;
-    let elevations = elevation_nodes();
-    let mut expected = AOD_NODES
-        .iter()
-        .flat_map(|&a| elevations.iter().map(move |&h| (a, h)));
-    let mut out = Vec::new();
-    let mut lines = 0;
-    for (n, line) in input.enumerate() {
-        let line = line.map_err(|e| bad(n + 1, e.to_string()))?;
-        lines = n + 1;
-        if n == 0 {
-            if line.trim() != HEADER {
-                return Err(bad(1, format!("expected the header {HEADER}")).into());
-            }
-            continue;
-        }
-        let values: Vec<f64> = line
-            .split(',')
-            .map(|v| v.trim().parse::<f64>())
-            .collect::<Result<_, _>>()
-            .map_err(|_| bad(n + 1, "not numbers".into()))?;
-        let Some((aod, h)) = expected.next() else {
-            return Err(bad(n + 1, "more rows than the grid".into()).into());
-        };
-        if !(values.len() == 6 && values[0] == aod && (values[1] - h).abs() < 1e-9) {
-            return Err(bad(
-                n + 1,
-                format!("expected aod {aod}, elevation {h} and four values"),
-            )
-            .into());
-        }
-        let (lo, hi) = SAMPLE_RANGE_LUX;
-        let columns = ["x_lux", "y_lux", "z_lux", "melanopic_edi_lux"];
-        for (v, column) in values[2..].iter().zip(columns) {
-            if !(*v > lo && *v <= hi) {
-                return Err(bad(
-                    n + 1,
-                    format!(
-                        "{column} = {} is outside the valid range ({lo}, {}] lux",
-                        crate::csv_output::compact(*v),
-                        crate::csv_output::compact(hi)
-                    ),
-                )
-                .into());
-            }
-        }
-        out.push(DiffuseSample {
-            aod,
-            elevation_deg: h,
-            xyzm: [values[2], values[3], values[4], values[5]],
-        });
-    }
-    if lines == 0 {
-        return Err(ParamError(format!("{}: the file is empty", path.display())).into());
-    }
-    if expected.next().is_some() {
-        return Err(bad(
-            lines,
+    let (lo, hi) = SAMPLE_RANGE_LUX;
+    let grid = sampled_grid::grid(&AOD_NODES, &elevation_nodes());
+    let rows = sampled_grid::read(path, MAX_DATA_BYTES, HEADER, &grid, |column, v| {
+        (!(v > lo && v <= hi)).then(|| {
             format!(
-                "the data ends here, before the grid does ({} rows of {})",
-                out.len(),
-                AOD_NODES.len() * elevations.len()
-            ),
-        )
-        .into());
-    }
-    Ok(out)
+                "{column} = {} is outside the valid range ({lo}, {}] lux",
+                crate::csv_output::compact(v),
+                crate::csv_output::compact(hi)
+            )
+        })
+    })?;
+    Ok(rows
+        .into_iter()
+        .map(|r| DiffuseSample {
+            aod: r.aod,
+            elevation_deg: r.elevation_deg,
+            xyzm: [r.values[0], r.values[1], r.values[2], r.values[3]],
+        })
+        .collect())
 }
 
 /// The direct beam's constants (module docs).

@@ -17,7 +17,10 @@
 //! day's Earth-Sun distance (`Daylight::on_day`: the day of the year and Spencer's series), the
 //! global light (their sum), chromaticity and CCT (`cct_duv`) and the LED drive levels; the parts' results must equal
 //! the whole step's bit for bit. It prints the minimum, median and maximum over the day of
-//! each, in instructions (the bracket's own instructions subtracted).
+//! each, in instructions (the bracket's own instructions subtracted). Then two calls the step
+//! does not make, for a controller that wants them: the light on a south-facing window
+//! (`Daylight::tilted` on a vertical plane: the vertical planes' table) and on a roof tilted
+//! 30° to the south (the table and the daylight sky's quadratures).
 
 #![no_std]
 #![no_main]
@@ -44,16 +47,36 @@ const _: u8 = PWM_BITS; // the PWM levels are the controller example's, not coun
 /// Steps in the day.
 const STEPS: usize = (24 * 60 / STEP_MINUTES) as usize;
 
-/// Instructions per part of the step, over the day.
+/// Instructions per part of the step, over the day (the steps it was measured at).
 struct Counts {
     name: &'static str,
     steps: [u32; STEPS],
+    measured: usize,
 }
 
+impl Counts {
+    fn push(&mut self, instructions: u32) {
+        if let Some(slot) = self.steps.get_mut(self.measured) {
+            *slot = instructions;
+            self.measured += 1;
+        }
+    }
+}
+
+/// The planes are lit at every this many steps (every 2 hours: the tilted one takes thousands
+/// of times the step's instructions on the soft-float cores, whose run would otherwise outlast
+/// qemu's time limit).
+const PLANE_EVERY: usize = 12;
+
+/// The window's and the roof's normals (+y north, +x east): facing south, and tilted 30° from
+/// the horizontal towards the south.
+const WINDOW: sky_core::Vec3 = sky_core::Vec3::new(0.0, -1.0, 0.0);
+const ROOF: sky_core::Vec3 = sky_core::Vec3::new(0.0, -0.5, 0.866_025_4);
+
 /// Runs the day and fills `counts` (whole step, sun, sky, the day's sunlight, illuminance, CCT,
-/// drive); `Ok(false)`
-/// if a part's result differs from the whole step's.
-fn run(counts: &mut [Counts; 7], per_instruction: f64, empty: u64) -> Result<bool, SkyError> {
+/// drive; window and roof every [`PLANE_EVERY`] steps); `Ok(false)` if a part's result differs from the whole
+/// step's or a plane's light is not finite and non-negative.
+fn run(counts: &mut [Counts; 9], per_instruction: f64, empty: u64) -> Result<bool, SkyError> {
     let (year, month, day) = DATE;
     let site = Site::new(SITE.0, SITE.1, SITE.2)?;
     let lamp = example_luminaire()?;
@@ -98,7 +121,14 @@ fn run(counts: &mut [Counts; 7], per_instruction: f64, empty: u64) -> Result<boo
             .iter_mut()
             .zip([t_step, t_sun, t_sky, t_day, t_lux, t_cct, t_drive])
         {
-            c.steps[index] = instructions(t, per_instruction, empty);
+            c.push(instructions(t, per_instruction, empty));
+        }
+        if index % PLANE_EVERY == 0 {
+            for (c, normal) in counts[7..].iter_mut().zip([WINDOW, ROOF]) {
+                let (t, light) = measure(|| sky.tilted(normal));
+                same &= light.is_finite() && light.min_element() >= 0.0;
+                c.push(instructions(t, per_instruction, empty));
+            }
         }
     }
     Ok(same)
@@ -110,6 +140,7 @@ fn main() -> ! {
     let part = |name| Counts {
         name,
         steps: [0; STEPS],
+        measured: 0,
     };
     let mut counts = [
         part("controller::step"),
@@ -119,6 +150,8 @@ fn main() -> ! {
         part("  global light (Daylight::global)"),
         part("  chromaticity and CCT (cct_duv)"),
         part("  LED drive (Luminaire::drive)"),
+        part("window, vertical (Daylight::tilted) *"),
+        part("roof, 30 deg (Daylight::tilted) *"),
     ];
     let same = match run(&mut counts, per_instruction, empty) {
         Ok(same) => same,
@@ -145,17 +178,29 @@ fn main() -> ! {
         "max"
     );
     for c in &mut counts {
-        c.steps.sort_unstable();
+        let steps = &mut c.steps[..c.measured];
+        steps.sort_unstable();
+        let n = steps.len();
+        if n == 0 {
+            continue;
+        }
         hprintln!(
             "{:<40} {:>10} {:>10} {:>10}",
             c.name,
-            c.steps[0],
-            (c.steps[STEPS / 2 - 1] + c.steps[STEPS / 2]) / 2,
-            c.steps[STEPS - 1]
+            steps[0],
+            (steps[(n - 1) / 2] + steps[n / 2]) / 2,
+            steps[n - 1]
         );
     }
+    hprintln!(
+        "* not part of the step; every {} steps ({} of the day's)",
+        PLANE_EVERY,
+        STEPS.div_ceil(PLANE_EVERY)
+    );
     if !same {
-        hprintln!("controller-instructions: FAIL: the parts differ from the whole step");
+        hprintln!(
+            "controller-instructions: FAIL: the parts differ from the whole step, or a plane's light is not finite and non-negative"
+        );
     }
     qemu_check::finish(same)
 }

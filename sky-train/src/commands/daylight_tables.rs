@@ -3,7 +3,7 @@
 //! optical depth and sun-angle node, into `--data`), then the tables are written from `--data`.
 
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use clap::Args;
@@ -76,5 +76,46 @@ pub fn run(args: &DaylightTablesArgs, output: &mut dyn Write) -> Result<()> {
     let source = tables::rust_source(&samples, &site, &tables::beam());
     write_atomically(&args.out, |f| Ok(f.write_all(source.as_bytes())?))?;
     super::report_written(output, &args.out);
+    Ok(())
+}
+
+/// The two steps of a table distilled from the reference ([`crate::sampled_grid`]).
+pub(super) struct Steps<S> {
+    /// The slow step: the reference over the grid.
+    pub(super) sample: fn(&cache::CacheDir, bool) -> Result<Vec<S>>,
+    /// The samples' file.
+    pub(super) write: fn(&Path, &[S]) -> Result<()>,
+    /// The samples from their file, checked.
+    pub(super) read: fn(&Path) -> Result<Vec<S>>,
+    /// The Rust source of the table.
+    pub(super) source: fn(&[S]) -> String,
+}
+
+/// With `sample`, samples the reference into `data` (atmospheres cached in `cache_dir`), then
+/// writes the table from `data` to `out`, reporting on `output`.
+pub(super) fn regenerate<S>(
+    steps: &Steps<S>,
+    sample: bool,
+    (data, out): (&Path, &Path),
+    cache_dir: Option<&Path>,
+    output: &mut dyn Write,
+) -> Result<()> {
+    check_output("--data", data, "csv")?;
+    check_output("--out", out, "rs")?;
+    if sample {
+        let dir = cache::CacheDir::new(cache_dir);
+        let samples = (steps.sample)(&dir, true)?;
+        (steps.write)(data, &samples)?;
+        writeln!(
+            output,
+            "wrote {} ({} samples)",
+            data.display(),
+            samples.len()
+        )?;
+    }
+    let samples = (steps.read)(data)?;
+    let source = (steps.source)(&samples);
+    write_atomically(out, |f| Ok(f.write_all(source.as_bytes())?))?;
+    super::report_written(output, out);
     Ok(())
 }

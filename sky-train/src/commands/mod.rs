@@ -7,6 +7,7 @@ pub mod bench;
 pub mod captures;
 pub mod cct;
 pub mod daylight;
+pub mod daylight_planes;
 pub mod daylight_plot;
 pub mod daylight_sky;
 pub mod daylight_tables;

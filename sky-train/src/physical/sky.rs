@@ -342,23 +342,49 @@ impl PhysicalSky {
 
     /// Spectral global irradiance on a plane with unit normal `normal` (+z up) over a
     /// Lambertian ground of the atmosphere's albedo: the direct beam times the cosine of
-    /// incidence, the sky over the plane's half of the upper hemisphere (a midpoint rule over
-    /// 90 x 180 directions of [`Self::spectral_radiance`]) and the ground's reflection of the
-    /// global horizontal irradiance seen over the lower half, ρ E_g (1 − n_z) / 2.
+    /// incidence, the sky's share ([`Self::sky_irradiance`]) and the ground's reflection of
+    /// the global horizontal irradiance seen over the lower half, ρ E_g (1 − n_z) / 2 (a
+    /// uniform ground of radiance ρ E_g / π). A zero or non-finite normal gives zero.
     #[must_use]
     pub fn tilted_irradiance(&self, normal: [f64; 3]) -> Spectrum {
-        let n = (normal[0].powi(2) + normal[1].powi(2) + normal[2].powi(2)).sqrt();
-        if !(n > 0.0 && n.is_finite()) {
-            return [0.0; NW];
-        }
-        let nrm = normal.map(|x| x / n);
-        let h = self.irradiance();
-        let cos_i = (nrm[0] * self.sun[0] + nrm[1] * self.sun[1] + nrm[2] * self.sun[2]).max(0.0);
-        let albedo = self.atmosphere.atmosphere.ground_albedo;
-        let mut e: Spectrum = std::array::from_fn(|l| {
-            h.direct_normal[l] * cos_i * f64::from(u8::from(self.mus > 0.0))
-                + albedo * h.global[l] * (1.0 - nrm[2]) / 2.0
+        let [e] = self.tilted_irradiances([normal]);
+        e
+    }
+
+    /// [`Self::tilted_irradiance`] for several planes at once (the sky's radiance evaluated
+    /// once for all of them).
+    #[must_use]
+    pub fn tilted_irradiances<const N: usize>(&self, normals: [[f64; 3]; N]) -> [Spectrum; N] {
+        let unit = normals.map(|normal| {
+            let n = (normal[0].powi(2) + normal[1].powi(2) + normal[2].powi(2)).sqrt();
+            (n > 0.0 && n.is_finite()).then(|| normal.map(|x| x / n))
         });
+        let h = self.irradiance();
+        let albedo = self.atmosphere.atmosphere.ground_albedo;
+        // A bad normal sees nothing (the zero vector: every cosine is zero).
+        let sky = self.sky_irradiance(unit.map(|u| u.unwrap_or([0.0; 3])));
+        std::array::from_fn(|k| {
+            let Some(nrm) = unit[k] else {
+                return [0.0; NW];
+            };
+            let cos_i =
+                (nrm[0] * self.sun[0] + nrm[1] * self.sun[1] + nrm[2] * self.sun[2]).max(0.0);
+            std::array::from_fn(|l| {
+                h.direct_normal[l] * cos_i * f64::from(u8::from(self.mus > 0.0))
+                    + albedo * h.global[l] * (1.0 - nrm[2]) / 2.0
+                    + sky[k][l]
+            })
+        })
+    }
+
+    /// The sky's share of the spectral irradiance on planes with unit normals `normals` (+z
+    /// up), W m⁻² nm⁻¹: ∫ L(ω) (n · ω) dω over the directions above the horizon in front of
+    /// each plane, by a midpoint rule over 90 × 180 directions of the upper hemisphere
+    /// (uniform in zenith angle and azimuth) of [`Self::spectral_radiance`], evaluated once
+    /// for every plane. Without the sun's disc and without the ground.
+    #[must_use]
+    pub fn sky_irradiance<const N: usize>(&self, normals: [[f64; 3]; N]) -> [Spectrum; N] {
+        let mut e = [[0.0; NW]; N];
         let (nt, np) = (90usize, 180usize);
         #[allow(clippy::cast_precision_loss)]
         let (dt, dp) = (0.5 * PI / nt as f64, 2.0 * PI / np as f64);
@@ -373,14 +399,17 @@ impl PhysicalSky {
                     theta.sin() * phi.sin(),
                     theta.cos(),
                 ];
-                let c = d[0] * nrm[0] + d[1] * nrm[1] + d[2] * nrm[2];
-                if c <= 0.0 {
-                    continue;
-                }
-                let l = self.spectral_radiance(d);
-                let w = c * theta.sin() * dt * dp;
-                for (o, x) in e.iter_mut().zip(l) {
-                    *o += w * x;
+                let mut l = None;
+                for (nrm, e) in normals.iter().zip(e.iter_mut()) {
+                    let c = d[0] * nrm[0] + d[1] * nrm[1] + d[2] * nrm[2];
+                    if c <= 0.0 {
+                        continue;
+                    }
+                    let l = l.get_or_insert_with(|| self.spectral_radiance(d));
+                    let w = c * theta.sin() * dt * dp;
+                    for (o, x) in e.iter_mut().zip(l.iter()) {
+                        *o += w * x;
+                    }
                 }
             }
         }
