@@ -25,7 +25,7 @@
 //! the measured illuminance over the controller's clear sky (`controller::step`), the fit on
 //! alternate days and its error on the other days (`tests/tests/overcast_measured.rs`,
 //! docs/weather.md "Colour under cloud"). **Error** on the held-out days (8 spectra, 5 days):
-//! RMS Δu′v′ 0.0028 (largest 0.0056), CCT 221 K (447 K), melanopic DER 0.020 (0.041); the test
+//! RMS Δu′v′ 0.0028 (largest 0.0056), CCT 212 K (447 K), melanopic DER 0.018 (0.041); the test
 //! fails above 0.0050, 400 K and 0.035. It is the scatter at a given k_c (a few hundred kelvin
 //! between days of the same k_c), which one number for the sky cannot resolve; the D65 end
 //! this replaces was twice as far off (0.0058, 454 K, 0.040). The measured overcast light

@@ -28,10 +28,12 @@
 //! steps of 1/4096) to keep them within the firmware's flash.
 
 use std::fmt::Write as _;
+use std::io::Write as _;
 use std::path::Path;
 
 use anyhow::Result;
 
+use crate::image_io::write_atomically;
 use crate::physical::constituents::{EARTH_RADIUS_M, N_WAVELENGTHS as NW, wavelength_nm};
 use crate::physical::photometry::channel_weights;
 use crate::physical::transport::{Medium, Transmittance};

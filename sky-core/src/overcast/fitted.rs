@@ -6,7 +6,7 @@
 //! melanopic DER, and the clear-sky index where the ramp to it ends.
 
 /// The clear-sky index at and below which the sky counts as fully overcast.
-pub(super) const CLEAR_SKY_INDEX: f32 = 0.74;
+pub(super) const CLEAR_SKY_INDEX: f32 = 0.73;
 /// The overcast light's chromaticity, CIE 1931 (x, y).
 pub(super) const CHROMATICITY: (f32, f32) = (0.3118, 0.3261);
 /// The overcast light's melanopic DER (CIE S 026:2018).
