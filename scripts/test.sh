@@ -11,7 +11,7 @@
 #          the micromath accuracy test with sky-core's `micromath` feature on,
 #          sky-core's examples, `cargo publish --dry-run` of the publishable crates,
 #          coverage-guided fuzzing of the decoders of outside input (scripts/fuzz.sh: one
-#          libFuzzer run per target, 25 s each), the sh blocks of README.md and docs/
+#          libFuzzer run per target, 12 s each), the sh blocks of README.md and docs/
 #          (scripts/doc-blocks.sh; their Rust blocks are doctests of tests/src/lib.rs)
 #   cross: sky-core for thumbv7em / riscv32imac / wasm32 without std or alloc, and the firmware
 #          examples under qemu checked against host-computed values (scripts/cross.sh)
@@ -108,8 +108,8 @@ other_lane() {
   step other "cross targets and firmware under qemu" scripts/cross.sh
   step other "sky-wasm: wasm build, wasm-bindgen tests and node tests, browser tests of the demo" \
     scripts/wasm.sh test
-  step other "coverage-guided fuzzing (libFuzzer): every decoder of outside input, 25 s each" \
-    scripts/fuzz.sh 25
+  step other "coverage-guided fuzzing (libFuzzer): every decoder of outside input, 12 s each" \
+    scripts/fuzz.sh 12
   step other "skymodels: the Python wheel (abi3), in a fresh virtual environment, against sky-core" \
     scripts/python.sh test
 }

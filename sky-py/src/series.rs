@@ -226,8 +226,10 @@ pub(crate) fn daylight_series<'py>(
     let aod = Broadcast::new("aod", &aod, times.len())?;
     series(py, DAYLIGHT, &times, |i, &t| {
         let sun = time::sun_at(algorithm, t, &site, i, scalar)?;
-        let day =
-            Daylight::new(sun.sun(), aod.at(i)).map_err(|e| value_error(&aod.element(i), e))?;
+        let day_of_year = time::utc_time(t, i, scalar)?.day_of_year();
+        let day = Daylight::new(sun.sun(), aod.at(i))
+            .map_err(|e| value_error(&aod.element(i), e))?
+            .on_day(day_of_year);
         Ok(daylight_row(&day))
     })
 }
@@ -306,14 +308,17 @@ fn decomposition(name: Option<&str>) -> PyResult<Decomposition> {
         return Ok(Decomposition::default());
     };
     match name {
+        "dirint" => Ok(Decomposition::Dirint),
+        "dirindex" => Ok(Decomposition::Dirindex),
         "erbs" => Ok(Decomposition::Erbs),
         "engerer2" => Ok(Decomposition::Engerer2),
         "engerer2-global" => Ok(Decomposition::Engerer2Global),
         other => Err(value_error(
             "decomposition",
             format!(
-                "{other:?} is not a separation model: \"erbs\" (Erbs et al. 1982), \"engerer2\" \
-                 (Engerer 2015) or \"engerer2-global\" (Bright & Engerer 2019, 1-minute)"
+                "{other:?} is not a separation model: \"dirint\" (Perez et al. 1992), \"dirindex\" \
+                 (Perez et al. 2002), \"erbs\" (Erbs et al. 1982), \"engerer2\" (Engerer 2015) \
+                 or \"engerer2-global\" (Bright & Engerer 2019, 1-minute)"
             ),
         )),
     }

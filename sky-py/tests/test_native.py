@@ -114,6 +114,8 @@ def measurements(rng, n):
     "light, decomposition, luminaire",
     [
         ("global", None, None),
+        ("global", "erbs", None),
+        ("sky", "dirindex", None),
         ("sky", "engerer2", None),
         (
             "global",

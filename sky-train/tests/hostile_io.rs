@@ -566,12 +566,15 @@ fn daylight_tables_data_lines_and_files_are_bounded() {
     assert!(!rs.exists());
 }
 
-/// The folder of the default atmosphere's cache entry, precomputed once for these tests
-/// (about a minute) under the test target's temporary folder.
+/// The folder of the default atmosphere's cache entry: the test target's temporary folder,
+/// where the workspace's other tests of the physical atmosphere (`tests/tests/physical.rs`,
+/// `daylight.rs`) cache it too, so that a test run precomputes it once; precomputed here
+/// (about a minute) when no test has yet. These tests only read it, and copy it elsewhere to
+/// change it.
 fn reference_cache() -> &'static Path {
     static DIR: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
     DIR.get_or_init(|| {
-        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("hostile-io-cache");
+        let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
         std::fs::create_dir_all(&dir).expect("cache folder");
         if !entry(&dir).exists() {
             let args = sample_physical(&dir);

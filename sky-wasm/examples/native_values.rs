@@ -143,7 +143,7 @@ fn daylight_day(
             t - f64::from(hour * 3600 + minute * 60),
         )?;
         let position = sun.position(&time, &site)?;
-        let light = Daylight::new(position.sun(), aod)?;
+        let light = Daylight::new(position.sun(), aod)?.on_day(time.day_of_year());
         let (x, y) = light.chromaticity();
         let row = [
             t,

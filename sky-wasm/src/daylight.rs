@@ -75,7 +75,8 @@ impl DaylightDay {
     /// `step` seconds ([1, 86400]), at `latitude` (degrees, −90 to 90, north positive),
     /// `longitude` (degrees, −180 to 180, east positive) and `elevation` (metres, −500 to
     /// 10 000), under a clear atmosphere of aerosol optical depth `aod` at 550 nm
-    /// ([`daylight_min_aod`] to [`daylight_max_aod`]). The sun is the controller's default
+    /// ([`daylight_min_aod`] to [`daylight_max_aod`]), on the date's Earth-Sun distance
+    /// (`Daylight::on_day`, as the controller's clear sky). The sun is the controller's default
     /// (Grena 2012: the years 2000-2110).
     ///
     /// # Errors
@@ -113,7 +114,9 @@ impl DaylightDay {
             let second = t - f64::from(hour * 3600 + minute * 60);
             let time = UtcTime::new(year, month, day, hour, minute, second).map_err(js_error)?;
             let position = sun.position(&time, &site).map_err(js_error)?;
-            let light = Daylight::new(position.sun(), aod).map_err(js_error)?;
+            let light = Daylight::new(position.sun(), aod)
+                .map_err(js_error)?
+                .on_day(time.day_of_year());
             let (x, y) = light.chromaticity();
             #[allow(clippy::cast_possible_truncation)]
             let row = [

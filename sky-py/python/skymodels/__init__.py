@@ -137,7 +137,7 @@ def daylight(latitude, longitude, times, aod=None, *, elevation=0.0, algorithm="
     times : UTC times (module docs); an array gives arrays of its shape.
     aod : float or array, optional
         Aerosol optical depth at 550 nm, ``MIN_AOD`` to ``MAX_AOD`` (0.05 to 0.8), one value or
-        one per time. None: ``DEFAULT_AOD`` (0.1, the default atmosphere of sky-core's tables).
+        one per time. None: ``DEFAULT_AOD`` (0.38, the default atmosphere of sky-core's tables).
         (A later release will take None as the site's monthly climatology; pass a number to
         keep today's behaviour.)
     elevation : float, keyword
@@ -148,7 +148,8 @@ def daylight(latitude, longitude, times, aod=None, *, elevation=0.0, algorithm="
 
     Returns
     -------
-    dict of float64 arrays (floats for a scalar time):
+    dict of float64 arrays (floats for a scalar time), on each time's Earth-Sun distance
+    (x 1.035 in early January to x 0.967 in early July of the values at 1 AU):
         ``global_illuminance``, ``diffuse_illuminance``, ``direct_illuminance`` (on the
         horizontal plane) and ``direct_normal_illuminance`` (on a plane facing the sun): lx.
         ``x``, ``y``: CIE 1931 chromaticity of the global light (0, 0 with no light).
@@ -179,7 +180,7 @@ def daylight_at_sun(sun_zenith, aod=None):
 
     For a sun position from elsewhere (pvlib's ``get_solarposition``: ``np.radians`` of its
     ``zenith`` column, the geometric one). Returns ``daylight``'s dict, in the shape of
-    ``sun_zenith``.
+    ``sun_zenith``, at the mean Earth-Sun distance (1 AU: no date is given).
     """
     zenith = _np.asarray(sun_zenith, dtype=_np.float64)
     shape, scalar = zenith.shape, zenith.ndim == 0
@@ -244,9 +245,11 @@ def controller_step(
     full_scale_lux : float
         The illuminance, lx, at which the luminaire gives its full output (levels clip above
         it, keeping the colour).
-    decomposition : {"erbs", "engerer2", "engerer2-global"}, optional
+    decomposition : {"dirint", "dirindex", "erbs", "engerer2", "engerer2-global"}, optional
         The separation model that splits a global reading without a diffuse one; None:
-        sky-core's default (``controller::Settings``'s, Erbs et al. 1982 today).
+        sky-core's default (``controller::Settings``'s: DIRINT, Perez et al. 1992, continuous
+        across its bins). Each time is a step alone: DIRINT's stability index (the reading
+        before) is not used.
     luminaire : four (x, y, lumens) tuples, optional
         Red, green, blue and white channels: CIE 1931 chromaticity and luminous flux at full
         drive. None: sky-core's example RGBW luminaire.

@@ -118,8 +118,11 @@ fn daylight_case(case: &Value) -> Outcome {
     let algorithm = algorithm(case)?;
     let (site, time) = (site(case)?, time(case)?);
     Ok((|| {
-        let sun = algorithm.position(&time?, &site?)?;
-        Ok(daylight_values(&Daylight::new(sun.sun(), aod)?))
+        let time = time?;
+        let sun = algorithm.position(&time, &site?)?;
+        Ok(daylight_values(
+            &Daylight::new(sun.sun(), aod)?.on_day(time.day_of_year()),
+        ))
     })())
 }
 
@@ -157,6 +160,8 @@ fn step_case(case: &Value) -> Outcome {
     };
     let decomposition = match case["decomposition"].as_str() {
         None => Decomposition::default(),
+        Some("dirint") => Decomposition::Dirint,
+        Some("dirindex") => Decomposition::Dirindex,
         Some("erbs") => Decomposition::Erbs,
         Some("engerer2") => Decomposition::Engerer2,
         Some("engerer2-global") => Decomposition::Engerer2Global,
