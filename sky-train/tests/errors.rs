@@ -303,3 +303,29 @@ fn bad_aoas_arguments_name_the_argument_and_range() {
     );
     assert!(!out.exists(), "nothing written");
 }
+
+/// `bench` runs and prints each evaluator's line with its ratio to a peer (on a small grid: the
+/// figures are docs/performance.md's, from the full grid on a quiet machine).
+#[test]
+fn bench_prints_every_evaluator_with_a_ratio() {
+    let out = sky_train(&["bench", "--width", "16", "--height", "8", "--runs", "1"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for name in [
+        "preetham",
+        "neural 6-12-3 rgb_batch",
+        "daylight rgb_batch",
+        "aoas",
+        "cct_duv",
+    ] {
+        let line = stdout
+            .lines()
+            .find(|l| l.contains(name))
+            .unwrap_or_else(|| panic!("no `{name}` line in\n{stdout}"));
+        assert!(line.contains("ns/") && line.contains("x vs "), "{line}");
+    }
+}
