@@ -88,42 +88,35 @@ fn surfrad(name: &'static str, file: &str) -> Station {
     }
 }
 
-/// NREL MIDC raw file of UTPASRL (University of Texas Rio Grande Valley, Edinburg): Year,
-/// DOY, CST (HHMM), battery, Direct Normal, its standard deviation, CHP1 temperature and its
-/// standard deviation, Global Horizontal, its standard deviation, Diffuse Horizontal, … (the
-/// header names 20 columns, the rows have 26: pvlib's `read_midc_raw_data_from_nrel` handles
-/// the mismatch by the header's first columns, as here); missing values −7999.
-fn midc_utpasrl(name: &'static str, file: &str, site: Site) -> Station {
-    let text = data(file);
-    let minutes = text
-        .lines()
-        .skip(1)
-        .filter_map(|l| {
-            let f: Vec<f64> = l.split(',').map(|v| v.parse().expect("number")).collect();
-            let (year, doy, hhmm) = (f[1] as i32, f[2] as u32, f[3] as u32);
-            // CST is UTC−6; the day's rows 06:00–17:59 CST stay within the UTC day.
-            let (hour, minute) = (hhmm / 100 + 6, hhmm % 100);
-            if f[9] < -100.0 || f[11] < -100.0 {
-                return None;
-            }
-            let (month, day) = month_day(year, doy);
-            Some(Minute {
-                time: (year, month, day, hour, minute),
-                ghi: f[9],
-                dhi: f[11],
-            })
-        })
-        .collect();
-    Station {
-        name,
-        site,
-        minutes,
-    }
+/// The layout of an NREL MIDC raw file: its hours behind UTC and the columns of GHI and DHI.
+/// Every such file starts Year, DOY, local standard time (HHMM); missing values are −7999.
+struct MidcLayout {
+    utc_offset_hours: u32,
+    ghi: usize,
+    dhi: usize,
 }
 
-/// NREL MIDC raw file of UAT (Tucson): Year, DOY, MST (HHMM), DNI, DHI, GHI (tracker), …;
-/// missing values −7999.
-fn midc(name: &'static str, file: &str, site: Site) -> Station {
+/// UAT (Tucson): MST (UTC−7), then DNI, DHI, GHI (tracker), …
+const MIDC_UAT: MidcLayout = MidcLayout {
+    utc_offset_hours: 7,
+    ghi: 6,
+    dhi: 5,
+};
+
+/// UTPASRL (University of Texas Rio Grande Valley, Edinburg): CST (UTC−6), then battery, Direct
+/// Normal, its standard deviation, CHP1 temperature and its standard deviation, Global
+/// Horizontal, its standard deviation, Diffuse Horizontal, … (the header names 20 columns, the
+/// rows have 26: pvlib's `read_midc_raw_data_from_nrel` handles the mismatch by the header's
+/// first columns, as here).
+const MIDC_UTPASRL: MidcLayout = MidcLayout {
+    utc_offset_hours: 6,
+    ghi: 9,
+    dhi: 11,
+};
+
+/// An NREL MIDC raw file of `layout`; the rows that fall on the next UTC day or miss a value
+/// are left out (the day files keep daylight rows, within the UTC day).
+fn midc(name: &'static str, file: &str, site: Site, layout: &MidcLayout) -> Station {
     let text = data(file);
     let minutes = text
         .lines()
@@ -131,16 +124,16 @@ fn midc(name: &'static str, file: &str, site: Site) -> Station {
         .filter_map(|l| {
             let f: Vec<f64> = l.split(',').map(|v| v.parse().expect("number")).collect();
             let (year, doy, hhmm) = (f[1] as i32, f[2] as u32, f[3] as u32);
-            // MST is UTC−7; the day's rows stay within the UTC day for 06:00–16:59 MST.
-            let (hour, minute) = (hhmm / 100 + 7, hhmm % 100);
-            if hour >= 24 || f[5] < -100.0 || f[6] < -100.0 {
+            let (hour, minute) = (hhmm / 100 + layout.utc_offset_hours, hhmm % 100);
+            let (ghi, dhi) = (f[layout.ghi], f[layout.dhi]);
+            if hour >= 24 || ghi < -100.0 || dhi < -100.0 {
                 return None;
             }
             let (month, day) = month_day(year, doy);
             Some(Minute {
                 time: (year, month, day, hour, minute),
-                ghi: f[6],
-                dhi: f[5],
+                ghi,
+                dhi,
             })
         })
         .collect();
@@ -248,6 +241,7 @@ fn stations() -> Vec<(Station, &'static str, Sky)> {
                 "MIDC UAT Tucson 2018-10-18",
                 "midc-uat-raw-20181018-day.txt",
                 Site::new(32.22969, -110.95534, 786.0).expect("site"),
+                &MIDC_UAT,
             ),
             "tucson",
             Sky::Clear,
@@ -262,10 +256,11 @@ fn stations() -> Vec<(Station, &'static str, Sky)> {
             Sky::Overcast,
         ),
         (
-            midc_utpasrl(
+            midc(
                 "MIDC UTPASRL Edinburg 2019-11-15",
                 "midc-utpasrl-raw-20191115-day.txt",
                 Site::new(26.3059, -98.1716, 45.0).expect("site"),
+                &MIDC_UTPASRL,
             ),
             "edinburg",
             Sky::Broken,
