@@ -75,12 +75,12 @@ pub struct Weather {
     /// Global horizontal illuminance, lx: the measured one, or the global irradiance through
     /// Perez's global efficacy.
     pub global_illuminance: f32,
-    /// Diffuse horizontal illuminance, lx: the diffuse irradiance through Perez's diffuse
-    /// efficacy.
+    /// Diffuse horizontal illuminance, lx: the global illuminance's diffuse part, apportioned
+    /// by Perez's diffuse and direct efficacies
+    /// ([`crate::measurement::Reading::parts_illuminance`]).
     pub diffuse_illuminance: f32,
-    /// Direct illuminance on the horizontal plane, lx: the direct normal irradiance times
-    /// cos Z through Perez's direct efficacy. The three efficacies are separate fits, so the
-    /// diffuse and direct illuminances add up to the global only within their errors.
+    /// Direct illuminance on the horizontal plane, lx: the global illuminance's direct part;
+    /// with the diffuse it sums to the global.
     pub direct_illuminance: f32,
     /// The clear sky's horizontal illuminance at the same time ([`clear_sky_illuminance`]) times
     /// [`Weather::clear_sky_factor`], XYZ with Y in lux.
@@ -639,6 +639,7 @@ fn step_at(
                 settings.precipitable_water,
             )?;
             history.last = last;
+            let (diffuse_lux, direct_lux) = reading.parts_illuminance(zenith);
             let lux = reading.global_illuminance;
             let index = (clear.y >= MIN_CLEAR_SKY_LUX).then(|| (lux / clear.y).min(f32::MAX));
             // The colour's ratio, continuous at night and 1 for a reading equal to the clear sky.
@@ -652,8 +653,8 @@ fn step_at(
                 diffuse_irradiance: reading.diffuse_irradiance,
                 direct_normal_irradiance: reading.direct_normal_irradiance,
                 global_illuminance: reading.global_illuminance,
-                diffuse_illuminance: reading.diffuse_illuminance(zenith),
-                direct_illuminance: reading.direct_illuminance(zenith),
+                diffuse_illuminance: diffuse_lux,
+                direct_illuminance: direct_lux,
                 clear_sky: clear,
                 clear_sky_factor: clear_scale,
                 clear_sky_index: index,
@@ -661,7 +662,7 @@ fn step_at(
             };
             let measured = match settings.light {
                 Light::Global => reading.global_illuminance,
-                Light::Sky => reading.diffuse_illuminance(sun.sun().zenith()),
+                Light::Sky => diffuse_lux,
             };
             // Melanopic EDI is linear in the spectrum, so the mixture at equal luminance mixes
             // the efficacy ratios (a clear light without light counts as the overcast light).

@@ -329,8 +329,8 @@ impl PerezSky {
     }
 
     /// The sky of an outdoor measurement ([`crate::measurement`]) taken with the sun at `sun`:
-    /// the reading's sky condition, scaled to its diffuse illuminance (diffuse irradiance times
-    /// Perez's diffuse efficacy).
+    /// the reading's sky condition, scaled to its diffuse illuminance (the global illuminance's
+    /// diffuse part, [`Reading::parts_illuminance`]).
     ///
     /// ```
     /// use sky_core::measurement::Measurement;
@@ -350,7 +350,7 @@ impl PerezSky {
         let condition = reading.condition.ok_or(SkyError::SunBelowHorizon {
             zenith: sun.zenith(),
         })?;
-        Self::new(sun, condition, reading.diffuse_illuminance(sun.zenith()))
+        Self::new(sun, condition, reading.parts_illuminance(sun.zenith()).0)
     }
 
     /// The same sky with the chromaticity (`x`, `y`) (CIE 1931) everywhere.

@@ -79,7 +79,9 @@ pub const MEASURED_COLUMNS: &str = "ghi_wm2,dhi_wm2,dni_wm2,global_lux,diffuse_l
 /// diffuse light with its colour under cloud); `ghi_wm2` the reading (or a lux reading over
 /// Perez's global efficacy), `dhi_wm2` the file's diffuse where it has one and else the split
 /// of the settings' separation model (DIRINT by default, `--decomposition`), `dni_wm2` the direct normal of that split; `global_lux`, `diffuse_lux` and
-/// `direct_lux` (on the horizontal plane) the measured light through Perez's efficacies;
+/// `direct_lux` (on the horizontal plane) the measured light through Perez's global efficacy
+/// and its diffuse and direct parts (the global apportioned by his diffuse and direct
+/// efficacies, so they sum to it: `sky_core::measurement::Reading::parts_illuminance`);
 /// `clear_global_lux` the clear sky's global illuminance, `clear_sky_index` the ratio
 /// `global_lux / clear_global_lux`, empty where the clear sky is below
 /// `sky_core::controller::MIN_CLEAR_SKY_LUX` (100 lx); `sky_type` the Perez sky-clearness bin

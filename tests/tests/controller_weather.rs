@@ -448,9 +448,12 @@ proptest! {
             Measurement::Irradiance { global: a, diffuse: b },
         ] {
             if let Ok(r) = m.read(zenith, 172) {
+                let (diffuse, direct) = r.parts_illuminance(zenith);
                 let v = [r.global_illuminance, r.global_irradiance, r.diffuse_irradiance,
-                    r.direct_normal_irradiance, r.diffuse_illuminance(zenith)];
+                    r.direct_normal_irradiance, diffuse, direct];
                 prop_assert!(v.iter().all(|x| x.is_finite() && *x >= 0.0), "{zenith} {m:?}: {r:?}");
+                prop_assert!(diffuse <= r.global_illuminance && direct <= r.global_illuminance,
+                    "{zenith} {m:?}: {r:?}");
             }
         }
     }
@@ -538,4 +541,64 @@ fn melanopic_edi_under_cloud_mixes_the_clear_and_the_overcast_light() {
             s.melanopic_edi
         );
     }
+}
+
+/// A reading's diffuse and direct illuminance are its global illuminance apportioned by Perez's
+/// diffuse and direct efficacies (`Reading::parts_illuminance`): they sum to the global, neither
+/// exceeds it, an all-diffuse reading is all diffuse lux, and the parts keep the ratio of
+/// Perez's separate fits (recomputed here in f64 from `Efficacy`). Printed: how far Perez's
+/// three fits are from closing (the diffuse and direct fits' lux against the global fit's).
+#[test]
+fn the_parts_of_a_reading_sum_to_its_global() {
+    use sky_core::efficacy::Efficacy;
+    let (mut low, mut high) = ((0.0f64, String::new()), (0.0f64, String::new()));
+    for zenith_deg in (0..=85).step_by(5) {
+        let z = (zenith_deg as f32).to_radians();
+        for global in [30.0f32, 120.0, 400.0, 900.0] {
+            for kd in [0.08f32, 0.2, 0.5, 0.8, 1.0] {
+                let m = Measurement::Irradiance {
+                    global,
+                    diffuse: kd * global,
+                };
+                let Ok(r) = m.read(z, 172) else { continue };
+                let (diffuse, direct) = r.parts_illuminance(z);
+                let g = f64::from(r.global_illuminance);
+                let (d, b) = (f64::from(diffuse), f64::from(direct));
+                assert!(
+                    (d + b - g).abs() <= 1e-5 * g,
+                    "{zenith_deg} deg {m:?}: {d} + {b} against {g}"
+                );
+                assert!(d <= g && b <= g && d >= 0.0 && b >= 0.0);
+                if kd == 1.0 {
+                    assert_eq!((diffuse, direct), (r.global_illuminance, 0.0), "{m:?}");
+                    continue;
+                }
+                let c = r.condition.expect("the sun is up");
+                let k = Efficacy::new(&c, z, r.precipitable_water);
+                let fit_d = f64::from(r.diffuse_irradiance) * f64::from(k.diffuse);
+                let fit_b = f64::from(r.direct_normal_irradiance)
+                    * f64::from(z.cos())
+                    * f64::from(k.direct);
+                if fit_b > 0.0 {
+                    let share = fit_d / (fit_d + fit_b);
+                    assert!((d / g - share).abs() <= 1e-5, "{m:?}: {} vs {share}", d / g);
+                }
+                let closure = (fit_d + fit_b) / g - 1.0;
+                let at = || format!("sun zenith {zenith_deg} deg, GHI {global} W/m2, k_d {kd}");
+                if closure < low.0 {
+                    low = (closure, at());
+                }
+                if closure > high.0 {
+                    high = (closure, at());
+                }
+            }
+        }
+    }
+    println!(
+        "Perez's diffuse and direct fits' lux against his global fit's, sun zenith 0-85 deg, GHI 30-900 W/m2, k_d 0.08-0.8: {:+.1} % ({}) to {:+.1} % ({})",
+        100.0 * low.0,
+        low.1,
+        100.0 * high.0,
+        high.1
+    );
 }

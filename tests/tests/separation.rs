@@ -545,7 +545,7 @@ fn score(
 ///
 /// * the default model (DIRINT, continuous, through the controller with its history) meets the
 ///   issue's clear-day RMS bound (≤ 35 %) on both clear days and its bias bound (|bias| ≤ 15 %)
-///   at Tucson; at Alamosa (snow, 2,317 m) its bias is above 15 %, the one bound not met
+///   at Tucson; at Alamosa (2,317 m, winter, no snow: albedo 0.18) its bias is above 15 %, the one bound not met
 ///   (docs/weather.md says so); it meets the overcast bound (RMS ≤ 25 %) at Eugene;
 /// * over the station days (clear, overcast and broken) the default has the smallest mean RMS
 ///   of the models through the controller with the site's clear sky (else

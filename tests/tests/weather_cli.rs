@@ -127,7 +127,8 @@ fn sample_cie_agrees_with_the_reference() {
 }
 
 /// `sample --model perez --ghi --dhi` (and `--ghi` alone, split by the reference's Erbs): the
-/// sky condition, the diffuse illuminance (diffuse efficacy) and the distribution of the
+/// sky condition, the diffuse illuminance (the global efficacy's lux apportioned by the diffuse
+/// and direct efficacies) and the distribution of the
 /// reference chain, integrated by brute force: luminance within 0.5 % absolute, and relative to
 /// the brightest view within 1e-4 (or 1 % of that view's value where fainter).
 #[test]
@@ -155,11 +156,15 @@ fn sample_perez_agrees_with_the_reference() {
         let i = (g - d_used) / z.cos();
         let epsilon = reference::sky_clearness(d_used, i, z);
         let delta = reference::sky_brightness(d_used, z, day);
-        let [_, k_diffuse, _] = reference::interpolated_efficacies(epsilon, delta, z, 2.0);
+        let [k_global, k_diffuse, k_direct] =
+            reference::interpolated_efficacies(epsilon, delta, z, 2.0);
         let coefficients = reference::all_weather(epsilon, delta, z);
         let az_r = az.to_radians();
         let rel_l = |t: f64, p: f64| reference::all_weather_luminance(coefficients, t, p, z, az_r);
-        let scale = d_used * k_diffuse / reference_integral(rel_l);
+        // The diffuse part of the global illuminance, apportioned by the diffuse and direct fits.
+        let (fit_d, fit_b) = (d_used * k_diffuse, i * z.cos() * k_direct);
+        let diffuse_lux = g * k_global * fit_d / (fit_d + fit_b);
+        let scale = diffuse_lux / reference_integral(rel_l);
         let (zs_s, az_s, g_s, d_s) = (zs.to_string(), az.to_string(), g.to_string(), d.to_string());
         let mut args = vec![
             "sample",
@@ -288,9 +293,11 @@ fn schedule_measurements_agree_with_the_reference() {
         let [k_global, k_diffuse, k_direct] =
             reference::interpolated_efficacies(epsilon, delta, z, 2.0);
         let lux = g * k_global;
-        // The split's light: the diffuse and the direct (on the horizontal) through their
-        // own efficacies.
-        let (diffuse_lux, direct_lux) = (d * k_diffuse, i * z.cos() * k_direct);
+        // The split's light: the global's lux apportioned by the diffuse and the direct (on the
+        // horizontal) through their own efficacies.
+        let (fit_d, fit_b) = (d * k_diffuse, i * z.cos() * k_direct);
+        let diffuse_lux = lux * fit_d / (fit_d + fit_b);
+        let direct_lux = lux - diffuse_lux;
         worst_parts = worst_parts
             .max((num(f[19]) - diffuse_lux).abs() / diffuse_lux)
             .max((num(f[20]) - direct_lux).abs() / direct_lux.max(1.0));

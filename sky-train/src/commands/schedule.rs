@@ -34,7 +34,7 @@ pub struct ScheduleArgs {
     /// light followed (cct_k, duv, horizontal_lux, RGBW, x, y, melanopic_edi_lux: the measured
     /// light with its colour under cloud); ghi_wm2, dhi_wm2, dni_wm2 (the reading and its
     /// split: the file's diffuse, else --decomposition's); global_lux, diffuse_lux, direct_lux (the
-    /// measured light through Perez's efficacies); clear_global_lux (the clear sky's, on the row's
+    /// measured light through Perez's efficacies, the diffuse and direct summing to the global); clear_global_lux (the clear sky's, on the row's
     /// day's Earth-Sun distance); clear_sky_index (global_lux over clear_global_lux, empty where
     /// the clear sky is below 100 lx, at night); sky_type (the Perez sky-clearness bin, 1 overcast to 8 clear; 0 with
     /// the sun below the horizon); clear_sky_factor (the self-calibration's learned clear-sky
