@@ -114,6 +114,26 @@ pub enum MeasurementFormat {
     /// `Diffuse` likewise. Values of −7999 or less are missing: a row without the GHI is
     /// skipped, a row without the DHI keeps the GHI alone.
     Midc,
+    /// A University of Oregon SRML archival file as the network delivers it (tab-separated; the
+    /// layout of pvlib's `iotools.read_srml`): a header of the station's number, the year, then
+    /// each column's data element number followed by a flag column (`0`); rows of the day of
+    /// year, the time HHMM (1 to 2400) at the end of the averaging interval in Pacific Standard
+    /// Time (UTC−8, every SRML station), then value-and-flag pairs. GHI is the first element
+    /// 100x, DHI the first 300x (x the instrument; elements 1000 and 3000 in most files). A row
+    /// is timed at its stamp (pvlib labels the interval's start, one interval earlier). Flag 99
+    /// is a missing or bad value: a row whose GHI has it is skipped, a row whose DHI has it
+    /// keeps the GHI alone.
+    Srml,
+    /// A BSRN station-to-archive file as the World Radiation Monitoring Center delivers it
+    /// (a month, gzip-compressed or not; the layout of pvlib's `iotools.read_bsrn`): the
+    /// first record's second line gives the month (columns 4-6) and the year (8-11); the
+    /// basic measurements' record (`*U0100` or `*C0100`) holds two fixed-width lines a minute
+    /// (UTC): the day of the month (columns 1-3), the minute of the day (5-9) and the global
+    /// irradiance's mean (11-16), then on the second line the diffuse irradiance's mean
+    /// (11-16). −999 is a missing value: a minute without the GHI is skipped, one without the
+    /// DHI keeps the GHI alone. The other records (station, instruments, upwelling and UV
+    /// radiation) are not read.
+    Bsrn,
 }
 
 /// One row of a measurement file: its line, UTC time and reading.
@@ -127,6 +147,33 @@ pub struct MeasuredRow {
     pub unix: UnixTime,
     /// The reading.
     pub measurement: Measurement,
+    /// Whether the file's diffuse was set aside: in the stations' formats, a diffuse above the
+    /// global by more than sky-core's tolerance (two instruments disagreeing, as a cloud's edge
+    /// passes or a tracker slips) leaves the global alone, as a flagged diffuse does
+    /// ([`station_reading`]).
+    pub diffuse_set_aside: bool,
+}
+
+/// A reading, and whether the file's diffuse was set aside ([`station_reading`]).
+pub type StationReading = (Measurement, bool);
+
+/// A station's global and diffuse reading, W/m², as a measurement: a diffuse above the global
+/// by more than sky-core's tolerance (the larger of
+/// [`sky_core::measurement::DIFFUSE_EXCESS_TOLERANCE`] and
+/// [`sky_core::measurement::DIFFUSE_EXCESS_FRACTION`] of the global) is set aside (`true`) and
+/// the global split by the settings' separation model. BSRN's quality control flags the same
+/// comparison (Long & Dutton, *BSRN Global Network recommended QC tests*, V2.0, 2010: diffuse
+/// over global above 1.05 with the sun more than 15° up).
+#[must_use]
+pub fn station_reading(global: f32, diffuse: Option<f32>) -> StationReading {
+    use sky_core::measurement::{DIFFUSE_EXCESS_FRACTION, DIFFUSE_EXCESS_TOLERANCE};
+    match diffuse {
+        Some(d) if d > global + DIFFUSE_EXCESS_TOLERANCE.max(DIFFUSE_EXCESS_FRACTION * global) => {
+            (Measurement::GlobalIrradiance(global), true)
+        }
+        Some(diffuse) => (Measurement::Irradiance { global, diffuse }, false),
+        None => (Measurement::GlobalIrradiance(global), false),
+    }
 }
 
 /// The largest measurement file read, in bytes: a year of readings every minute (525,600
@@ -145,10 +192,54 @@ pub fn read_measurements(
     format: MeasurementFormat,
     each: &mut dyn FnMut(&MeasuredRow) -> Result<()>,
 ) -> Result<()> {
+    use std::io::BufRead;
     let source = format!("--measurements {}", path.display());
     let file = crate::csv_input::open(path, MAX_MEASUREMENT_BYTES)
         .map_err(|e| ParamError(format!("{source}: {e}")))?;
-    parse_measurements(&mut std::io::BufReader::new(file), &source, format, each)
+    let mut file = std::io::BufReader::new(file);
+    let gzip = file
+        .fill_buf()
+        .map_err(|e| ParamError(format!("{source}: cannot read: {e}")))?
+        .starts_with(&[0x1f, 0x8b]);
+    if gzip {
+        // Decompressed, the file is held to the same length (a small file can inflate to
+        // gigabytes).
+        let inflated = Bounded {
+            inner: flate2::bufread::MultiGzDecoder::new(file),
+            left: MAX_MEASUREMENT_BYTES,
+        };
+        let source = format!("{source} (gzip)");
+        parse_measurements(
+            &mut std::io::BufReader::new(inflated),
+            &source,
+            format,
+            each,
+        )
+    } else {
+        parse_measurements(&mut file, &source, format, each)
+    }
+}
+
+/// A reader that fails once more than `left` bytes have been read from it.
+struct Bounded<R> {
+    inner: R,
+    left: u64,
+}
+
+impl<R: std::io::Read> std::io::Read for Bounded<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        self.left = self.left.checked_sub(n as u64).ok_or_else(|| {
+            std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!(
+                    "longer than {} MiB decompressed, the largest measurement file read",
+                    MAX_MEASUREMENT_BYTES >> 20
+                ),
+            )
+        })?;
+        Ok(n)
+    }
 }
 
 /// The thermal-offset and range rule is sky-core's ([`sky_core::measurement::Measurement`]);
@@ -175,6 +266,9 @@ pub fn parse_measurements(
     format: MeasurementFormat,
     each: &mut dyn FnMut(&MeasuredRow) -> Result<()>,
 ) -> Result<()> {
+    if format == MeasurementFormat::Bsrn {
+        return parse_bsrn(input, source, each);
+    }
     let mut lines = crate::csv_input::lines(input, source);
     let mut next = || loop {
         match lines.next_line() {
@@ -188,6 +282,8 @@ pub fn parse_measurements(
     let layout = match format {
         MeasurementFormat::Csv => Layout::csv(source, header_line, &header)?,
         MeasurementFormat::Midc => Layout::midc(source, header_line, &header)?,
+        MeasurementFormat::Srml => Layout::srml(source, header_line, &header)?,
+        MeasurementFormat::Bsrn => unreachable!("BSRN files are parsed by parse_bsrn, above"),
         MeasurementFormat::Surfrad => {
             // The station's name, then its latitude, longitude and elevation.
             if next()?.is_none() {
@@ -199,13 +295,34 @@ pub fn parse_measurements(
             Layout::Surfrad
         }
     };
-    let mut previous: Option<(usize, f64)> = None;
+    let mut rows = InOrder::default();
     while let Some((n, line)) = next()? {
         let error = |what: String| ParamError(format!("{source} line {n}: {what}"));
-        let Some((unix, measurement)) = layout.row(&line, &error)? else {
-            continue;
-        };
-        if let Some((line, t)) = previous
+        if let Some((unix, reading)) = layout.row(&line, &error)? {
+            rows.hand_on(n, unix, reading, &error, each)?;
+        }
+    }
+    Ok(())
+}
+
+/// The rows handed on so far: each must come after the one before.
+#[derive(Default)]
+struct InOrder {
+    previous: Option<(usize, f64)>,
+}
+
+impl InOrder {
+    /// Hands the reading of line `n` at `unix` to `each`, after checking that it comes after
+    /// the one before.
+    fn hand_on(
+        &mut self,
+        n: usize,
+        unix: UnixTime,
+        (measurement, diffuse_set_aside): StationReading,
+        error: &dyn Fn(String) -> ParamError,
+        each: &mut dyn FnMut(&MeasuredRow) -> Result<()>,
+    ) -> Result<()> {
+        if let Some((line, t)) = self.previous
             && unix.0 <= t
         {
             return Err(error(format!(
@@ -214,7 +331,7 @@ pub fn parse_measurements(
             ))
             .into());
         }
-        previous = Some((n, unix.0));
+        self.previous = Some((n, unix.0));
         let (y, mo, d, h, mi, sec) = unix.to_civil();
         let time = UtcTime::new(y, mo, d, h, mi, sec).map_err(|e| error(format!("utc: {e}")))?;
         each(&MeasuredRow {
@@ -222,7 +339,143 @@ pub fn parse_measurements(
             time,
             unix,
             measurement,
-        })?;
+            diffuse_set_aside,
+        })
+    }
+}
+
+/// A BSRN value at or below this is missing (they are written −999).
+const BSRN_MISSING: f32 = -999.0;
+
+/// Parses a BSRN station-to-archive file ([`MeasurementFormat::Bsrn`]): lines are read as
+/// bytes (the station's address may be in Latin-1), the basic measurements' lines must be
+/// ASCII.
+fn parse_bsrn(
+    input: &mut dyn std::io::BufRead,
+    source: &str,
+    each: &mut dyn FnMut(&MeasuredRow) -> Result<()>,
+) -> Result<()> {
+    use crate::csv_input::{MAX_LINE_BYTES, shown};
+    use std::io::{BufRead, Read};
+    let mut n = 0usize;
+    let mut buf = Vec::new();
+    // The next line without its end, `None` at the end of the file.
+    let mut next = |buf: &mut Vec<u8>| -> Result<Option<usize>, ParamError> {
+        buf.clear();
+        n += 1;
+        let got = (&mut *input)
+            .take(MAX_LINE_BYTES as u64 + 1)
+            .read_until(b'\n', buf)
+            .map_err(|e| ParamError(format!("{source}: cannot read: {e}")))?;
+        if buf.len() > MAX_LINE_BYTES {
+            return Err(ParamError(format!(
+                "{source} line {n}: the line is longer than {MAX_LINE_BYTES} bytes"
+            )));
+        }
+        while buf.last().is_some_and(|b| *b == b'\n' || *b == b'\r') {
+            buf.pop();
+        }
+        Ok((got > 0).then_some(n))
+    };
+    let text = |buf: &[u8], n: usize| -> Result<String, ParamError> {
+        std::str::from_utf8(buf)
+            .ok()
+            .filter(|t| t.is_ascii())
+            .map(str::to_owned)
+            .ok_or_else(|| ParamError(format!("{source} line {n}: not ASCII text")))
+    };
+    // The first record: `*U0001` (or `*C0001`), then the station, month and year.
+    let first = next(&mut buf)?;
+    if first.is_none() || !(buf.starts_with(b"*U0001") || buf.starts_with(b"*C0001")) {
+        return Err(ParamError(format!(
+            "{source} line 1: a BSRN station-to-archive file starts with the record *U0001 (or *C0001)"
+        ))
+        .into());
+    }
+    let Some(l) = next(&mut buf)? else {
+        return Err(ParamError(format!("{source}: no line after *U0001")).into());
+    };
+    let date = text(&buf, l)?;
+    let field = |t: &str, range: std::ops::Range<usize>| {
+        t.get(range)
+            .map(str::trim)
+            .and_then(|v| v.parse::<u32>().ok())
+    };
+    let (Some(month), Some(year)) = (
+        field(&date, 3..6).filter(|m| (1..=12).contains(m)),
+        field(&date, 7..11).filter(|y| (1..=2999).contains(y)),
+    ) else {
+        return Err(ParamError(format!(
+            "{source} line {l}: `{}`: expected the station, the month (columns 4-6, 1-12) and the year (columns 8-11)",
+            shown(&date)
+        ))
+        .into());
+    };
+    #[allow(clippy::cast_possible_wrap)] // year <= 2999
+    let month_start = UnixTime::from_civil(year as i32, month, 1, 0, 0, 0.0).0;
+    // To the basic measurements' record.
+    loop {
+        if next(&mut buf)?.is_none() {
+            return Err(ParamError(format!(
+                "{source}: no basic measurements (record *U0100 or *C0100)"
+            ))
+            .into());
+        }
+        if buf.starts_with(b"*U0100") || buf.starts_with(b"*C0100") {
+            break;
+        }
+    }
+    let mut rows = InOrder::default();
+    while let Some(a) = next(&mut buf)? {
+        if buf.starts_with(b"*") {
+            break; // the next record
+        }
+        let first = text(&buf, a)?;
+        let Some(b) = next(&mut buf)? else {
+            return Err(ParamError(format!(
+                "{source} line {a}: a minute of the basic measurements has two lines; the file ends after the first"
+            ))
+            .into());
+        };
+        let second = text(&buf, b)?;
+        let error = |what: String| ParamError(format!("{source} line {a}: {what}"));
+        let int = |t: &str, range: std::ops::Range<usize>, what: &str, max: u32| {
+            field(t, range.clone())
+                .filter(|&v| v <= max)
+                .ok_or_else(|| {
+                    error(format!(
+                        "{what} (columns {}-{}) `{}`: expected an integer up to {max}",
+                        range.start + 1,
+                        range.end,
+                        shown(t.get(range.clone()).map_or("", str::trim))
+                    ))
+                })
+        };
+        let value = |t: &str, line: usize, what: &str| -> Result<Option<f32>, ParamError> {
+            let v = t.get(10..16).map_or("", str::trim);
+            let x = field_number(v).ok_or_else(|| {
+                ParamError(format!(
+                    "{source} line {line}: {what} (columns 11-16) `{}`: expected a finite number",
+                    shown(v)
+                ))
+            })?;
+            Ok((x > BSRN_MISSING).then_some(x))
+        };
+        let day = int(&first, 0..3, "the day", 31)?;
+        let minute = int(&first, 4..9, "the minute of the day", 1439)?;
+        if day == 0 {
+            return Err(error("the day 0: the days of the month count from 1".into()).into());
+        }
+        let Some(global) = value(&first, a, "the global irradiance")? else {
+            continue;
+        };
+        let diffuse = value(&second, b, "the diffuse irradiance")?;
+        let unix = UnixTime(month_start + f64::from(day - 1) * 86_400.0 + f64::from(minute) * 60.0);
+        let (_, m, ..) = unix.to_civil();
+        if m != month {
+            return Err(error(format!("the day {day}: not a day of month {month}")).into());
+        }
+        rows.hand_on(a, unix, station_reading(global, diffuse), &error, each)?;
     }
     Ok(())
 }
@@ -247,7 +500,16 @@ enum Layout {
     },
     /// Fixed columns (see [`MeasurementFormat::Surfrad`]).
     Surfrad,
+    /// The year of the header, the columns of GHI and DHI (each followed by its flag).
+    Srml {
+        year: u32,
+        ghi: usize,
+        dhi: Option<usize>,
+    },
 }
+
+/// An SRML value whose flag is this is missing or bad.
+const SRML_MISSING_FLAG: &str = "99";
 
 /// A MIDC value at or below this is missing.
 const MIDC_MISSING: f32 = -7999.0;
@@ -333,17 +595,47 @@ impl Layout {
         })
     }
 
+    fn srml(source: &str, header_line: usize, header: &str) -> Result<Self, ParamError> {
+        use crate::csv_input::shown;
+        let fields: Vec<&str> = header.split('\t').map(str::trim).collect();
+        let bad = |what: &str| {
+            ParamError(format!(
+                "{source} line {header_line}: the SRML header `{}` {what}",
+                shown(header)
+            ))
+        };
+        let year = fields
+            .get(1)
+            .and_then(|y| y.parse::<u32>().ok())
+            .filter(|y| (1..=2999).contains(y))
+            .ok_or_else(|| bad("has no year (1-2999) in its second field"))?;
+        // Data element numbers at 2, 4, …, each followed by its flag column.
+        let element = |code: &str| {
+            (2..fields.len())
+                .step_by(2)
+                .find(|&i| fields[i].len() == 4 && fields[i].starts_with(code))
+        };
+        let ghi = element("100").ok_or_else(|| {
+            bad("has no global horizontal irradiance (data element 100x) followed by its flag")
+        })?;
+        Ok(Self::Srml {
+            year,
+            ghi,
+            dhi: element("300"),
+        })
+    }
+
     /// The time and reading of one data line; `None` for a row without a reading (a missing or
     /// flagged GHI in the stations' formats).
     fn row(
         &self,
         line: &str,
         error: &dyn Fn(String) -> ParamError,
-    ) -> Result<Option<(UnixTime, Measurement)>, ParamError> {
+    ) -> Result<Option<(UnixTime, StationReading)>, ParamError> {
         use crate::csv_input::shown;
-        let reading = |global: f32, diffuse: Option<f32>| match diffuse {
-            Some(diffuse) => Measurement::Irradiance { global, diffuse },
-            None => Measurement::GlobalIrradiance(global),
+        let strict = |global: f32, diffuse: Option<f32>| match diffuse {
+            Some(diffuse) => (Measurement::Irradiance { global, diffuse }, false),
+            None => (Measurement::GlobalIrradiance(global), false),
         };
         match *self {
             Self::Csv { utc, lux, ghi, dhi } => {
@@ -363,8 +655,11 @@ impl Layout {
                 let text = at(utc, "utc")?;
                 let unix = UnixTime::parse(text).map_err(|e| error(format!("utc: {e:#}")))?;
                 let measurement = match (lux, ghi) {
-                    (Some(i), _) => Measurement::GlobalIlluminance(number(i, "global_lux")?),
-                    (None, Some(g)) => reading(
+                    (Some(i), _) => (
+                        Measurement::GlobalIlluminance(number(i, "global_lux")?),
+                        false,
+                    ),
+                    (None, Some(g)) => strict(
                         number(g, "ghi_wm2")?,
                         dhi.map(|d| number(d, "dhi_wm2")).transpose()?,
                     ),
@@ -419,7 +714,7 @@ impl Layout {
                         + f64::from(day - 1) * 86_400.0
                         + f64::from((t / 100 + offset_hours) * 3600 + (t % 100) * 60),
                 );
-                Ok(Some((unix, reading(g, d))))
+                Ok(Some((unix, station_reading(g, d))))
             }
             Self::Surfrad => {
                 let fields: Vec<&str> = line.split_whitespace().collect();
@@ -455,7 +750,59 @@ impl Layout {
                 let Some(g) = value(8, "dw_solar")? else {
                     return Ok(None);
                 };
-                Ok(Some((unix, reading(g, value(14, "diffuse")?))))
+                Ok(Some((unix, station_reading(g, value(14, "diffuse")?))))
+            }
+            Self::Srml { year, ghi, dhi } => {
+                let fields: Vec<&str> = line.split('\t').map(str::trim).collect();
+                let int = |i: usize, column: &str, range: std::ops::RangeInclusive<u32>| {
+                    let v = fields.get(i).copied().unwrap_or("");
+                    v.parse::<u32>()
+                        .ok()
+                        .filter(|x| range.contains(x))
+                        .ok_or_else(|| {
+                            error(format!(
+                                "{column} `{}`: expected an integer in {}-{}",
+                                shown(v),
+                                range.start(),
+                                range.end()
+                            ))
+                        })
+                };
+                let value = |i: usize, column: &str| -> Result<Option<f32>, ParamError> {
+                    let (Some(v), Some(flag)) = (fields.get(i), fields.get(i + 1)) else {
+                        return Err(error(format!(
+                            "no {column} field with its flag (the header names it as column {})",
+                            i + 1
+                        )));
+                    };
+                    if *flag == SRML_MISSING_FLAG {
+                        return Ok(None);
+                    }
+                    field_number(v).map(Some).ok_or_else(|| {
+                        error(format!("{column} `{}`: expected a finite number", shown(v)))
+                    })
+                };
+                let day = int(0, "the day of year", 1..=366)?;
+                let t = int(1, "the time (HHMM)", 1..=2400)?;
+                if t % 100 > 59 {
+                    return Err(error(format!("the time {t:04}: not HHMM")));
+                }
+                let Some(g) = value(ghi, "the global irradiance")? else {
+                    return Ok(None);
+                };
+                let d = match dhi {
+                    Some(i) => value(i, "the diffuse irradiance")?,
+                    None => None,
+                };
+                #[allow(clippy::cast_possible_wrap)] // year <= 2999
+                let start = UnixTime::from_civil(year as i32, 1, 1, 0, 0, 0.0).0;
+                // Pacific Standard Time, 8 hours behind UTC; 2400 is the next day's 00:00.
+                let unix = UnixTime(
+                    start
+                        + f64::from(day - 1) * 86_400.0
+                        + f64::from((t / 100 + 8) * 3600 + (t % 100) * 60),
+                );
+                Ok(Some((unix, station_reading(g, d))))
             }
         }
     }
@@ -669,9 +1016,20 @@ pub fn schedule_measured(
         .map_err(|e| located(r, e))
     };
     let mut history = History::new();
+    let mut set_aside: Option<(usize, usize)> = None; // (rows, the first's line)
     read_measurements(file, format, &mut |r| {
+        if r.diffuse_set_aside {
+            let (n, first) = set_aside.unwrap_or((0, r.line));
+            set_aside = Some((n + 1, first));
+        }
         run(r, &mut history).map(|_| ()).map_err(Into::into)
     })?;
+    if let Some((n, first)) = set_aside {
+        eprintln!(
+            "note: --measurements {}: {n} row(s) with the diffuse above the global by more than max(10 W/m2, 5 %) (first on line {first}): their diffuse set aside, the global split by the separation model",
+            file.display()
+        );
+    }
     // Readings more than 30 minutes apart (or less than one): no clear-period detection, so
     // no calibration, unless a state file asks for one (then its error).
     let mut learner = if calibration.enabled {
@@ -768,11 +1126,15 @@ mod tests {
     use super::*;
 
     fn parse(text: &str) -> Result<Vec<MeasuredRow>, String> {
+        parse_as(text, MeasurementFormat::Csv)
+    }
+
+    fn parse_as(text: &str, format: MeasurementFormat) -> Result<Vec<MeasuredRow>, String> {
         let mut rows = Vec::new();
         parse_measurements(
             &mut text.as_bytes(),
             "--measurements m.csv",
-            MeasurementFormat::Csv,
+            format,
             &mut |r| {
                 rows.push(*r);
                 Ok(())
@@ -843,6 +1205,141 @@ mod tests {
             parse(&long)
                 .expect_err("long")
                 .contains("line 2: the line is longer")
+        );
+    }
+
+    /// SRML and BSRN files: the header's year and elements, the fixed columns, missing values,
+    /// and each malformed part named with its line.
+    #[test]
+    fn srml_and_bsrn_files_are_read_and_bad_ones_named() {
+        let srml = "94255\t2018\t1000\t0\t3001\t0\n1\t700\t-2.5\t12\t0\t12\n1\t701\t5\t99\t0\t12\n1\t2400\t10\t11\t30\t99\n";
+        let rows = parse_as(srml, MeasurementFormat::Srml).expect("SRML");
+        assert_eq!(rows.len(), 2, "the flagged GHI's row skipped");
+        assert_eq!(rows[0].unix.rfc3339(), "2018-01-01T15:00:00Z");
+        assert!(
+            matches!(rows[0].measurement, Measurement::Irradiance { global, diffuse } if global == -2.5 && diffuse == 0.0)
+        );
+        assert_eq!(rows[1].unix.rfc3339(), "2018-01-02T08:00:00Z");
+        assert!(matches!(rows[1].measurement, Measurement::GlobalIrradiance(g) if g == 10.0));
+        for (text, needle) in [
+            ("94255\t18x\t1000\t0\n", "line 1: the SRML header"),
+            ("94255\t2018\t2010\t0\n", "no global horizontal irradiance"),
+            (
+                "94255\t2018\t1000\t0\n1\t761\t5\t12\n",
+                "line 2: the time 0761: not HHMM",
+            ),
+            (
+                "94255\t2018\t1000\t0\n1\t2401\t5\t12\n",
+                "line 2: the time (HHMM) `2401`",
+            ),
+            (
+                "94255\t2018\t1000\t0\n1\t700\t5\n",
+                "line 2: no the global irradiance field",
+            ),
+            (
+                "94255\t2018\t1000\t0\n1\t700\tx\t12\n",
+                "the global irradiance `x`",
+            ),
+        ] {
+            let e = parse_as(text, MeasurementFormat::Srml).expect_err(text);
+            assert!(e.contains(needle) && !e.contains('\n'), "{text}: {e}");
+        }
+        let head = "*U0001\n 21  6 2016  1\n*C0003\nstation caf\u{e9}\n*U0100\n";
+        let minute = |d: &str, m: &str, g: &str, dh: &str| {
+            format!(
+                "{d:>3} {m:>4} {g:>6}   0.1    0    0      0   0.0    0    0\n          {dh:>6}   0.2   -1    0    348   0.3  347  349      9.3 100.5  958\n"
+            )
+        };
+        let good = format!(
+            "{head}{}{}{}*U0300\nanything\n",
+            minute("1", "0", "-999", "-999"),
+            minute("1", "600", "500", "80"),
+            minute("2", "1439", "3", "-999")
+        );
+        let rows = parse_as(&good, MeasurementFormat::Bsrn).expect("BSRN");
+        assert_eq!(rows.len(), 2);
+        assert_eq!(rows[0].unix.rfc3339(), "2016-06-01T10:00:00Z");
+        assert!(
+            matches!(rows[0].measurement, Measurement::Irradiance { global, diffuse } if global == 500.0 && diffuse == 80.0)
+        );
+        assert_eq!(rows[1].unix.rfc3339(), "2016-06-02T23:59:00Z");
+        assert!(matches!(rows[1].measurement, Measurement::GlobalIrradiance(g) if g == 3.0));
+        for (text, needle) in [
+            (
+                "*U0002\n".to_owned(),
+                "line 1: a BSRN station-to-archive file starts with",
+            ),
+            (
+                "*U0001\n 21 13 2016  1\n".to_owned(),
+                "line 2: ` 21 13 2016  1`: expected the station, the month",
+            ),
+            (
+                "*U0001\n 21  6 2016  1\n*U0300\n".to_owned(),
+                "no basic measurements",
+            ),
+            (
+                format!("{head}{}", minute("31", "0", "5", "5")),
+                "the day 31: not a day of month 6",
+            ),
+            (
+                format!("{head}{}", minute("1", "1440", "5", "5")),
+                "the minute of the day (columns 5-9) `1440`",
+            ),
+            (
+                format!("{head}{}", minute("1", "0", "abc", "5")),
+                "line 6: the global irradiance (columns 11-16) `abc`",
+            ),
+            (
+                format!("{head}{}", minute("1", "0", "5", "a")),
+                "line 7: the diffuse irradiance",
+            ),
+            (
+                format!("{head}  1    0      5   0.1    0    0\n"),
+                "the file ends after the first",
+            ),
+            (
+                format!(
+                    "{head}{}{}",
+                    minute("1", "5", "5", "5"),
+                    minute("1", "4", "5", "5")
+                ),
+                "line 8: utc 2016-06-01T00:04:00Z: not after the time on line 6",
+            ),
+            (
+                format!("{head}{}", minute("1", "0", "5\u{e9}", "5")),
+                "line 6: not ASCII text",
+            ),
+        ] {
+            let e = parse_as(&text, MeasurementFormat::Bsrn).expect_err(&text);
+            assert!(
+                e.starts_with("--measurements m.csv") && e.contains(needle) && !e.contains('\n'),
+                "{text}: {e}"
+            );
+        }
+        // A diffuse beyond the tolerance is set aside, within it kept.
+        assert_eq!(
+            station_reading(382.0, Some(413.0)),
+            (Measurement::GlobalIrradiance(382.0), true)
+        );
+        assert_eq!(
+            station_reading(382.0, Some(395.0)),
+            (
+                Measurement::Irradiance {
+                    global: 382.0,
+                    diffuse: 395.0
+                },
+                false
+            )
+        );
+        assert_eq!(
+            station_reading(-3.0, Some(6.0)),
+            (
+                Measurement::Irradiance {
+                    global: -3.0,
+                    diffuse: 6.0
+                },
+                false
+            )
         );
     }
 }

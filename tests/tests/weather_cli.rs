@@ -736,3 +736,196 @@ fn a_raw_midc_file_runs() {
     println!("MIDC UAT: {} rows, {up} with the sun up", lines.len());
     assert!(up > 100 && up < lines.len());
 }
+
+/// A University of Oregon SRML archival file as delivered (tab-separated; PST, the time at the
+/// end of each minute; GHI element 1000, no DHI): every row with its GHI runs, the time is the
+/// stamp in UTC and the reading the file's (offsets as 0), the GHI alone split by DIRINT.
+#[test]
+fn a_raw_srml_file_runs() {
+    let file = station_file("srml-eupo-20180101-day.txt");
+    let raw = std::fs::read_to_string(&file).expect("the SRML file");
+    let header: Vec<&str> = raw.lines().next().expect("header").split('\t').collect();
+    assert_eq!(header[2], "1000", "GHI first");
+    let rows: Vec<Vec<f64>> = raw
+        .lines()
+        .skip(1)
+        .map(|l| l.split('\t').map(num).collect())
+        .filter(|r: &Vec<f64>| r[3] != 99.0)
+        .collect();
+    assert!(
+        rows.iter().any(|r| r[2] == 0.0) && rows.iter().any(|r| r[2] > 100.0),
+        "night and day rows as delivered"
+    );
+    let out = run(
+        &[
+            "schedule",
+            "--lat",
+            "44.0467",
+            "--lon",
+            "-123.0743",
+            "--elevation",
+            "150",
+            "--measurements",
+            &file,
+            "--measurements-format",
+            "srml",
+        ],
+        "",
+    )
+    .unwrap_or_else(|e| panic!("{}", e.0));
+    assert_finite_fields(&out);
+    let lines: Vec<Vec<&str>> = out
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    assert_eq!(lines.len(), rows.len());
+    for (f, r) in lines.iter().zip(&rows) {
+        // Day of year 1 of 2018, HHMM in PST, 8 hours behind UTC.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let (doy, hhmm) = (r[0] as u32, r[1] as u32);
+        let minutes = (doy - 1) * 1440 + (hhmm / 100 + 8) * 60 + hhmm % 100;
+        let want = format!(
+            "2018-01-{:02}T{:02}:{:02}:00Z",
+            1 + minutes / 1440,
+            minutes % 1440 / 60,
+            minutes % 60
+        );
+        assert_eq!(f[0], want);
+        assert!((num(f[15]) - r[2].max(0.0)).abs() < 1e-3, "{f:?} {r:?}");
+        assert!(num(f[16]) <= num(f[15]), "{f:?}");
+    }
+}
+
+/// The basic measurements (LR0100) of a BSRN station-to-archive file, read here by whitespace
+/// (the reader takes the format's fixed columns): (day, minute, GHI, DHI) per minute.
+fn bsrn_minutes(text: &str) -> Vec<[f64; 4]> {
+    let mut lines = text
+        .lines()
+        .skip_while(|l| !l.starts_with("*U0100"))
+        .skip(1)
+        .take_while(|l| !l.starts_with('*'));
+    let mut minutes = Vec::new();
+    while let (Some(a), Some(b)) = (lines.next(), lines.next()) {
+        let a: Vec<f64> = a.split_whitespace().map(num).collect();
+        let b: Vec<f64> = b.split_whitespace().map(num).collect();
+        minutes.push([a[0], a[1], a[2], b[0]]);
+    }
+    minutes
+}
+
+/// A BSRN station-to-archive file as the archive delivers it, gzip-compressed (BSRN Payerne,
+/// 14 June 2016; `tests/data/stations/README.md`): the metadata records are passed over, each
+/// minute with its GHI runs (exit 0, no NaN), at its UTC minute, with the file's GHI and DHI
+/// (offsets as 0); the minute whose diffuse is above the global beyond the tolerance (11:57, a
+/// cloud's edge: 413 against 382 W/m²) keeps the global alone, split by DIRINT; the file
+/// decompressed runs the same.
+#[test]
+fn a_raw_bsrn_file_runs() {
+    use std::io::Read;
+    let file = station_file("bsrn-pay-20160614-part.dat.gz");
+    let mut text = String::new();
+    flate2::read::GzDecoder::new(std::fs::File::open(&file).expect("the BSRN file"))
+        .read_to_string(&mut text)
+        .expect("gzip");
+    let minutes: Vec<[f64; 4]> = bsrn_minutes(&text)
+        .into_iter()
+        .filter(|m| m[2] > -999.0)
+        .collect();
+    let args = |path: &str| {
+        run(
+            &[
+                "schedule",
+                "--lat",
+                "46.815",
+                "--lon",
+                "6.944",
+                "--elevation",
+                "491",
+                "--measurements",
+                path,
+                "--measurements-format",
+                "bsrn",
+            ],
+            "",
+        )
+        .unwrap_or_else(|e| panic!("{}", e.0))
+    };
+    let out = args(&file);
+    assert_finite_fields(&out);
+    let lines: Vec<Vec<&str>> = out
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    assert_eq!(lines.len(), minutes.len());
+    assert!(minutes.len() > 1400, "a day of minutes");
+    let mut set_aside = 0;
+    for (f, m) in lines.iter().zip(&minutes) {
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let (day, minute) = (m[0] as u32, m[1] as u32);
+        let want = format!("2016-06-{day:02}T{:02}:{:02}:00Z", minute / 60, minute % 60);
+        assert_eq!(f[0], want);
+        let (ghi, dhi) = (num(f[15]), num(f[16]));
+        assert!((ghi - m[2].max(0.0)).abs() < 1e-3, "{f:?} {m:?}");
+        assert!(dhi <= ghi, "{f:?}");
+        let excess = m[3] - m[2];
+        if excess > 10f64.max(0.05 * m[2]) {
+            set_aside += 1;
+            assert!(dhi < m[3] - 10.0, "the diffuse set aside: {f:?} {m:?}");
+        } else if m[3] > -999.0 && m[2] > 50.0 {
+            assert!(
+                (dhi - m[3].min(m[2])).abs() < 1e-3,
+                "the file's diffuse: {f:?} {m:?}"
+            );
+        }
+    }
+    assert_eq!(set_aside, 1, "the minute at the cloud's edge, 11:57 UTC");
+    // The same file, not compressed.
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let plain = dir.path().join("pay0616.dat");
+    std::fs::write(&plain, &text).expect("write");
+    assert_eq!(args(plain.to_str().expect("utf-8")), out);
+}
+
+/// A gzip-compressed measurement file is held to the plain file's limit once decompressed
+/// (64 MiB): 65 MiB of blank lines in 66 KB are refused with a one-line error naming the file.
+#[test]
+fn a_compressed_file_is_bounded_when_decompressed() {
+    use std::io::Write;
+    let dir = tempfile::tempdir().expect("temporary directory");
+    let path = dir.path().join("bomb.csv.gz");
+    let mut gz = flate2::write::GzEncoder::new(
+        std::fs::File::create(&path).expect("create"),
+        flate2::Compression::best(),
+    );
+    gz.write_all(b"utc,ghi_wm2\n").expect("write");
+    let blank = [b' '; 4095];
+    for _ in 0..(65 << 20) / 4096 {
+        gz.write_all(&blank).expect("write");
+        gz.write_all(b"\n").expect("write");
+    }
+    gz.finish().expect("gzip");
+    assert!(std::fs::metadata(&path).expect("size").len() < 1 << 20);
+    let path = path.to_str().expect("utf-8");
+    let (message, is_param) = run(
+        &[
+            "schedule",
+            "--lat",
+            "46.8",
+            "--lon",
+            "6.9",
+            "--measurements",
+            path,
+        ],
+        "",
+    )
+    .expect_err("refused");
+    assert!(is_param, "{message}");
+    assert!(
+        message.contains(path)
+            && message.contains("64 MiB decompressed")
+            && !message.contains('\n'),
+        "{message}"
+    );
+}

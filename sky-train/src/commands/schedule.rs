@@ -144,6 +144,10 @@ pub enum FormatArg {
     Surfrad,
     /// An NREL MIDC raw-data file.
     Midc,
+    /// A University of Oregon SRML archival file (times in PST, at the interval's end).
+    Srml,
+    /// A BSRN station-to-archive file (a month; gzip-compressed or not).
+    Bsrn,
 }
 
 #[allow(clippy::cast_possible_truncation)]
@@ -261,6 +265,8 @@ pub fn run(args: &ScheduleArgs, output: &mut dyn Write) -> Result<()> {
                 FormatArg::Csv => MeasurementFormat::Csv,
                 FormatArg::Surfrad => MeasurementFormat::Surfrad,
                 FormatArg::Midc => MeasurementFormat::Midc,
+                FormatArg::Srml => MeasurementFormat::Srml,
+                FormatArg::Bsrn => MeasurementFormat::Bsrn,
             };
             if let Some(state) = &args.calibration_state {
                 crate::output_path::file(
