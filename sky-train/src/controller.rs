@@ -154,6 +154,23 @@ pub struct MeasuredRow {
     pub diffuse_set_aside: bool,
 }
 
+impl MeasuredRow {
+    /// The row with its global reading alone (a diffuse left out, to be split by the
+    /// separation model).
+    #[must_use]
+    pub fn global_alone(&self) -> Self {
+        let measurement = match self.measurement {
+            Measurement::Irradiance { global, .. } => Measurement::GlobalIrradiance(global),
+            m => m,
+        };
+        Self {
+            measurement,
+            diffuse_set_aside: false,
+            ..*self
+        }
+    }
+}
+
 /// A reading, and whether the file's diffuse was set aside ([`station_reading`]).
 pub type StationReading = (Measurement, bool);
 
@@ -979,7 +996,10 @@ fn calibration_for(
 /// that a bad row is refused before anything is written and memory stays flat in the number
 /// of rows. With `calibration.enabled` the second pass runs the self-calibration over the rows
 /// in order ([`sky_core::controller::step_calibrated`]; the interval is the rows' most frequent
-/// one), and the learned state is written to `calibration.state` at the end.
+/// one), and the learned state is written to `calibration.state` at the end. With
+/// `global_only` a row's diffuse is left out and its global split by the settings' separation
+/// model ([`MeasuredRow::global_alone`]: the split of a GHI-only reading, to compare with the
+/// file's diffuse).
 ///
 /// # Errors
 /// Bad parameters or a bad reading as a [`ParamError`] naming the file's line; a state file
@@ -988,6 +1008,7 @@ pub fn schedule_measured(
     config: &ScheduleConfig,
     file: &Path,
     format: MeasurementFormat,
+    global_only: bool,
     calibration: &CalibrationConfig,
     output: &mut dyn Write,
 ) -> Result<()> {
@@ -1017,7 +1038,9 @@ pub fn schedule_measured(
     };
     let mut history = History::new();
     let mut set_aside: Option<(usize, usize)> = None; // (rows, the first's line)
+    let alone = |r: &MeasuredRow| if global_only { r.global_alone() } else { *r };
     read_measurements(file, format, &mut |r| {
+        let r = &alone(r);
         if r.diffuse_set_aside {
             let (n, first) = set_aside.unwrap_or((0, r.line));
             set_aside = Some((n + 1, first));
@@ -1044,6 +1067,7 @@ pub fn schedule_measured(
     writeln!(output, "{MEASURED_HEADER}")?;
     let mut history = History::new();
     read_measurements(file, format, &mut |r| {
+        let r = &alone(r);
         let line = match learner.as_mut() {
             Some(cal) => {
                 let (s, c) = step_calibrated(

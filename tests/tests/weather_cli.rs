@@ -819,7 +819,8 @@ fn bsrn_minutes(text: &str) -> Vec<[f64; 4]> {
 /// minute with its GHI runs (exit 0, no NaN), at its UTC minute, with the file's GHI and DHI
 /// (offsets as 0); the minute whose diffuse is above the global beyond the tolerance (11:57, a
 /// cloud's edge: 413 against 382 W/m²) keeps the global alone, split by DIRINT; the file
-/// decompressed runs the same.
+/// decompressed runs the same; with `--global-only` every minute's global is split, as the same
+/// globals in the project's CSV are.
 #[test]
 fn a_raw_bsrn_file_runs() {
     use std::io::Read;
@@ -832,26 +833,25 @@ fn a_raw_bsrn_file_runs() {
         .into_iter()
         .filter(|m| m[2] > -999.0)
         .collect();
-    let args = |path: &str| {
-        run(
-            &[
-                "schedule",
-                "--lat",
-                "46.815",
-                "--lon",
-                "6.944",
-                "--elevation",
-                "491",
-                "--measurements",
-                path,
-                "--measurements-format",
-                "bsrn",
-            ],
-            "",
-        )
-        .unwrap_or_else(|e| panic!("{}", e.0))
+    let args = |path: &str, extra: &[&str]| {
+        let mut a = vec![
+            "schedule",
+            "--lat",
+            "46.815",
+            "--lon",
+            "6.944",
+            "--elevation",
+            "491",
+            "--measurements",
+            path,
+        ];
+        if !extra.contains(&"--measurements-format") {
+            a.extend(["--measurements-format", "bsrn"]);
+        }
+        a.extend_from_slice(extra);
+        run(&a, "").unwrap_or_else(|e| panic!("{}", e.0))
     };
-    let out = args(&file);
+    let out = args(&file, &[]);
     assert_finite_fields(&out);
     let lines: Vec<Vec<&str>> = out
         .lines()
@@ -885,7 +885,18 @@ fn a_raw_bsrn_file_runs() {
     let dir = tempfile::tempdir().expect("temporary directory");
     let plain = dir.path().join("pay0616.dat");
     std::fs::write(&plain, &text).expect("write");
-    assert_eq!(args(plain.to_str().expect("utf-8")), out);
+    assert_eq!(args(plain.to_str().expect("utf-8"), &[]), out);
+    // --global-only: the file's global alone, split as the same globals in the project's CSV.
+    let csv = dir.path().join("ghi.csv");
+    let mut rows = String::from("utc,ghi_wm2\n");
+    for (f, m) in lines.iter().zip(&minutes) {
+        rows.push_str(&format!("{},{}\n", f[0], m[2]));
+    }
+    std::fs::write(&csv, rows).expect("write");
+    let csv = csv.to_str().expect("utf-8");
+    let alone = args(&file, &["--global-only"]);
+    assert_eq!(alone, args(csv, &["--measurements-format", "csv"]));
+    assert_ne!(alone, out, "the split differs from the measured diffuse");
 }
 
 /// A gzip-compressed measurement file is held to the plain file's limit once decompressed

@@ -43,12 +43,21 @@ pub struct ScheduleArgs {
     /// calibration_status (learning, calibrated, drifted, sensor-suspect).
     #[arg(long, value_name = "FILE")]
     pub measurements: Option<PathBuf>,
-    /// The layout of --measurements: csv (the header above), surfrad (a NOAA SURFRAD daily
-    /// file as delivered: GHI dw_solar, DHI diffuse, rows with a bad flag or missing GHI
-    /// skipped) or midc (an NREL MIDC raw-data file: Year, DOY, a time column named by its
-    /// time zone, the first Global... and Diffuse... columns in W/m^2).
+    /// The layout of --measurements, each as the network delivers it and optionally
+    /// gzip-compressed: csv (the header above), surfrad (a NOAA SURFRAD daily file: GHI
+    /// dw_solar, DHI diffuse, rows with a bad flag or missing GHI skipped), midc (an NREL MIDC
+    /// raw-data file: Year, DOY, a time column named by its time zone, the first Global... and
+    /// Diffuse... columns in W/m^2), srml (a University of Oregon SRML archival file: PST, the
+    /// time at the interval's end, elements 100x GHI and 300x DHI, flag 99 missing) or bsrn (a
+    /// BSRN station-to-archive month: the basic measurements' record, UTC). In the stations'
+    /// formats a diffuse above the global by more than max(10 W/m2, 5 %) is set aside (the
+    /// global split by --decomposition; a note on stderr counts such rows).
     #[arg(long, value_enum, value_name = "FORMAT", default_value_t = FormatArg::Csv, requires = "measurements")]
     pub measurements_format: FormatArg,
+    /// Read only the global of --measurements, leaving out its diffuse: every row's global is
+    /// split by --decomposition (dhi_wm2 is then the split's, to compare with the file's).
+    #[arg(long, requires = "measurements")]
+    pub global_only: bool,
     /// Minutes between rows, from 00:00 UTC (1 to 1440; not with --measurements).
     #[arg(long, value_name = "MIN", default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=1440), conflicts_with = "measurements")]
     pub step: u32,
@@ -279,7 +288,14 @@ pub fn run(args: &ScheduleArgs, output: &mut dyn Write) -> Result<()> {
                 enabled: !args.no_self_calibration,
                 state: args.calibration_state.clone(),
             };
-            schedule_measured(&config, file, format, &calibration, &mut out)?;
+            schedule_measured(
+                &config,
+                file,
+                format,
+                args.global_only,
+                &calibration,
+                &mut out,
+            )?;
         }
         None => schedule(&config, &mut out)?,
     }
