@@ -1,5 +1,5 @@
 //! Any bytes as a measurement file (`schedule --measurements`) in any of its formats (CSV,
-//! SURFRAD, MIDC; the first byte chooses): the rows handed on are finite and in strictly
+//! SURFRAD, MIDC, SRML, BSRN; the first byte chooses): the rows handed on are finite and in strictly
 //! increasing time, or the error is one line naming the file; the controller step that each
 //! row drives (as `schedule` runs it) never panics, and a step it accepts is finite.
 #![no_main]
@@ -16,10 +16,12 @@ fuzz_target!(|data: &[u8]| {
     let Some((&first, text)) = data.split_first() else {
         return;
     };
-    let format = match first % 3 {
+    let format = match first % 5 {
         0 => MeasurementFormat::Csv,
         1 => MeasurementFormat::Surfrad,
-        _ => MeasurementFormat::Midc,
+        2 => MeasurementFormat::Midc,
+        3 => MeasurementFormat::Srml,
+        _ => MeasurementFormat::Bsrn,
     };
     let site = Site::new(48.21, 16.37, 0.0).expect("a valid site");
     let lamp = example_luminaire().expect("the example luminaire");

@@ -104,17 +104,26 @@ const MIN_CHUNK: usize = 8192;
 /// into one contiguous chunk per core (std threads, for arrays of at least [`MIN_CHUNK`] per
 /// thread). The values do not depend on the split; an error is the first by index, as one
 /// thread would find it.
+/// [`columns`] on this thread, one item after the other (`row` may keep state).
+fn in_order<T, const N: usize>(
+    names: [&'static str; N],
+    items: &[T],
+    mut row: impl FnMut(usize, &T) -> PyResult<[f64; N]>,
+) -> PyResult<Columns<N>> {
+    let mut out = Columns::new(names, items.len())?;
+    for (k, item) in items.iter().enumerate() {
+        out.push(row(k, item)?);
+    }
+    Ok(out)
+}
+
 fn columns<T: Sync, const N: usize>(
     names: [&'static str; N],
     items: &[T],
     row: impl Fn(usize, &T) -> PyResult<[f64; N]> + Sync,
 ) -> PyResult<Columns<N>> {
     let chunk_of = |start: usize, chunk: &[T]| -> PyResult<Columns<N>> {
-        let mut out = Columns::new(names, chunk.len())?;
-        for (k, item) in chunk.iter().enumerate() {
-            out.push(row(start + k, item)?);
-        }
-        Ok(out)
+        in_order(names, chunk, |k, item| row(start + k, item))
     };
     let cores = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
     let threads = cores.min(items.len() / MIN_CHUNK).max(1);
@@ -461,7 +470,7 @@ fn weather_row(s: &Step) -> [f64; 8] {
 /// The controller's step at each of `times`: the Python package's `controller_step`.
 #[pyfunction]
 #[pyo3(signature = (latitude, longitude, times, aod, elevation, algorithm, light, full_scale_lux,
-                    decomposition, lux, ghi, dhi, luminaire, scalar))]
+                    decomposition, lux, ghi, dhi, luminaire, history, scalar))]
 #[allow(clippy::too_many_arguments)] // the Python signature's keywords
 pub(crate) fn controller_series<'py>(
     py: Python<'py>,
@@ -478,10 +487,22 @@ pub(crate) fn controller_series<'py>(
     ghi: Option<PyReadonlyArray1<'py, f32>>,
     dhi: Option<PyReadonlyArray1<'py, f32>>,
     luminaire: Option<[(f32, f32, f32); 4]>,
+    history: bool,
     scalar: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let site = time::site(latitude, longitude, elevation)?;
     let times = elements(&times)?;
+    if history && let Some(i) = (1..times.len()).find(|&i| times[i] <= times[i - 1]) {
+        return Err(value_error(
+            &element("times", i, scalar),
+            format!(
+                "{} is not after times[{}] = {} (history=True takes one sensor's readings in time order)",
+                time::iso(times[i]),
+                i - 1,
+                time::iso(times[i - 1])
+            ),
+        ));
+    }
     let aod = Broadcast::new("aod", &aod, times.len())?;
     // The fields bound here; sky-core's defaults for the rest.
     #[allow(clippy::needless_update)] // sky-core's settings grow: the site's parameters
@@ -496,48 +517,59 @@ pub(crate) fn controller_series<'py>(
     let lamp = self::luminaire(luminaire)?;
     let readings = Readings::new(lux, ghi, dhi, times.len())?;
     let measured = !matches!(readings, Readings::None);
-    let columns = py.detach(|| {
-        columns(CONTROLLER, &times, |i, &t| {
-            let time = time::utc_time(t, i, scalar)?;
-            let settings = Settings {
-                aerosol_optical_depth: aod.at(i),
-                ..settings
+    let one = |i: usize, t: i64, history: &mut Option<controller::History>| {
+        let time = time::utc_time(t, i, scalar)?;
+        let settings = Settings {
+            aerosol_optical_depth: aod.at(i),
+            ..settings
+        };
+        let (measurement, measured_names) = readings.at(i);
+        let stepped = match history {
+            Some(h) => {
+                controller::step_with_history(&time, &site, &settings, &lamp, measurement, h)
+            }
+            None => controller::step(&time, &site, &settings, &lamp, measurement),
+        };
+        let s = stepped.map_err(|e| {
+            // The step checks the settings, the sun's years, then the measurement.
+            let context = match e {
+                SkyError::OutOfRange { parameter, .. } if parameter.starts_with("aerosol") => {
+                    aod.element(i)
+                }
+                SkyError::OutOfRange { parameter, .. } if parameter.starts_with("full-scale") => {
+                    "full_scale_lux".to_owned()
+                }
+                SkyError::OutOfRange { parameter, .. } if parameter.starts_with("year") => {
+                    let hint = if settings.sun == SunAlgorithm::Fast {
+                        " (algorithm=\"spa\" takes the years 1-2999)"
+                    } else {
+                        ""
+                    };
+                    let at = format!("{} = {}", element("times", i, scalar), time::iso(t));
+                    return value_error(&at, format!("{e}{hint}"));
+                }
+                _ => measured_names.clone(),
             };
-            let (measurement, measured_names) = readings.at(i);
-            let s = controller::step(&time, &site, &settings, &lamp, measurement).map_err(|e| {
-                // The step checks the settings, the sun's years, then the measurement.
-                let context = match e {
-                    SkyError::OutOfRange { parameter, .. } if parameter.starts_with("aerosol") => {
-                        aod.element(i)
-                    }
-                    SkyError::OutOfRange { parameter, .. }
-                        if parameter.starts_with("full-scale") =>
-                    {
-                        "full_scale_lux".to_owned()
-                    }
-                    SkyError::OutOfRange { parameter, .. } if parameter.starts_with("year") => {
-                        let hint = if settings.sun == SunAlgorithm::Fast {
-                            " (algorithm=\"spa\" takes the years 1-2999)"
-                        } else {
-                            ""
-                        };
-                        let at = format!("{} = {}", element("times", i, scalar), time::iso(t));
-                        return value_error(&at, format!("{e}{hint}"));
-                    }
-                    _ => measured_names.clone(),
-                };
-                value_error(&context, e)
-            })?;
-            let mut row = [0.0; CONTROLLER.len()];
-            let (step, rest) = row.split_at_mut(STEP.len());
-            let (weather, rest) = rest.split_at_mut(WEATHER.len());
-            let (levels, clipped) = rest.split_at_mut(4);
-            step.copy_from_slice(&step_row(&s));
-            weather.copy_from_slice(&weather_row(&s));
-            levels.copy_from_slice(&s.drive.levels.map(f64::from));
-            clipped.fill(f64::from(u8::from(s.drive.luminance_clipped)));
-            Ok(row)
-        })
+            value_error(&context, e)
+        })?;
+        let mut row = [0.0; CONTROLLER.len()];
+        let (step, rest) = row.split_at_mut(STEP.len());
+        let (weather, rest) = rest.split_at_mut(WEATHER.len());
+        let (levels, clipped) = rest.split_at_mut(4);
+        step.copy_from_slice(&step_row(&s));
+        weather.copy_from_slice(&weather_row(&s));
+        levels.copy_from_slice(&s.drive.levels.map(f64::from));
+        clipped.fill(f64::from(u8::from(s.drive.luminance_clipped)));
+        Ok(row)
+    };
+    let columns = py.detach(|| {
+        if history {
+            // One series in time order: each step after the one before, on this thread.
+            let mut h = Some(controller::History::new());
+            in_order(CONTROLLER, &times, |i, &t| one(i, t, &mut h))
+        } else {
+            columns(CONTROLLER, &times, |i, &t| one(i, t, &mut None))
+        }
     })?;
     let dict = PyDict::new(py);
     let mut data = columns.data.into_iter();

@@ -224,6 +224,7 @@ def controller_step(
     full_scale_lux=10_000.0,
     decomposition=None,
     luminaire=None,
+    history=False,
 ):
     """A daylight-following luminaire's step at each of ``times``: sky-core's
     ``controller::step``, as the firmware and ``sky-train schedule`` run it.
@@ -248,8 +249,15 @@ def controller_step(
     decomposition : {"dirint", "dirindex", "erbs", "engerer2", "engerer2-global"}, optional
         The separation model that splits a global reading without a diffuse one; None:
         sky-core's default (``controller::Settings``'s: DIRINT, Perez et al. 1992, continuous
-        across its bins). Each time is a step alone: DIRINT's stability index (the reading
-        before) is not used.
+        across its bins). Each time is a step alone unless ``history``.
+    history : bool
+        The times are one sensor's readings in time order (strictly increasing, in the order
+        of the flattened array): each step takes the reading before it, as ``sky-train schedule
+        --measurements`` does (sky-core's ``controller::step_with_history``), which DIRINT's
+        stability index needs: on docs/weather.md's clear station days its diffuse is then
+        +26 % and +4 % of the measured one instead of +57 % and +33 % alone. Readings more
+        than 90 minutes apart, or a step without a measurement or with the sun down, start
+        afresh. False (the default): every time is a step alone, computed over the cores.
     luminaire : four (x, y, lumens) tuples, optional
         Red, green, blue and white channels: CIE 1931 chromaticity and luminous flux at full
         drive. None: sky-core's example RGBW luminaire.
@@ -289,6 +297,7 @@ def controller_step(
         reading("ghi", ghi),
         reading("dhi", dhi),
         luminaire,
+        bool(history),
         scalar,
     )
     return _shaped(columns, shape, scalar)

@@ -152,7 +152,11 @@ fn sun_case(case: &Value) -> Outcome {
     })())
 }
 
-fn step_case(case: &Value) -> Outcome {
+/// The series' histories: a `step` case with `"history": name` is a step of that series, after
+/// the cases of the same name before it (`controller::step_with_history`).
+type Histories = std::collections::HashMap<String, controller::History>;
+
+fn step_case(case: &Value, histories: &mut Histories) -> Outcome {
     let light = match text(case, "light")? {
         "global" => Light::Global,
         "sky" => Light::Sky,
@@ -211,7 +215,18 @@ fn step_case(case: &Value) -> Outcome {
     };
     let (site, time) = (site(case)?, time(case)?);
     Ok((|| {
-        let s = controller::step(&time?, &site?, &settings, &lamp?, measurement)?;
+        let (time, site, lamp) = (time?, site?, lamp?);
+        let s = match case["history"].as_str() {
+            Some(name) => controller::step_with_history(
+                &time,
+                &site,
+                &settings,
+                &lamp,
+                measurement,
+                histories.entry(name.to_owned()).or_default(),
+            )?,
+            None => controller::step(&time, &site, &settings, &lamp, measurement)?,
+        };
         let (x, y) = daylight::chromaticity(s.illuminance);
         let (kelvin, duv) = cct(s.cct);
         let mut out = json!({
@@ -506,12 +521,12 @@ fn physical_case(case: &Value, kind: &str) -> Outcome {
     }))
 }
 
-fn run(case: &Value) -> Result<Value, BadCase> {
+fn run(case: &Value, histories: &mut Histories) -> Result<Value, BadCase> {
     let outcome = match text(case, "kind")? {
         "daylight" => daylight_case(case)?,
         "daylight_at_sun" => daylight_at_sun_case(case)?,
         "sun" => sun_case(case)?,
-        "step" => step_case(case)?,
+        "step" => step_case(case, histories)?,
         "sky" => sky_case(case)?,
         "render" => render_case(case)?,
         "direction" => direction_case(case)?,
@@ -530,9 +545,10 @@ fn main() -> Result<(), String> {
         .read_to_string(&mut input)
         .map_err(|e| format!("stdin: {e}"))?;
     let cases: Vec<Value> = serde_json::from_str(&input).map_err(|e| format!("stdin: {e}"))?;
+    let mut histories = Histories::new();
     let results = cases
         .iter()
-        .map(run)
+        .map(|c| run(c, &mut histories))
         .collect::<Result<Vec<_>, _>>()
         .map_err(|BadCase(e)| format!("bad case: {e}"))?;
     println!("{}", Value::Array(results));
