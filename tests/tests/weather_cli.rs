@@ -900,7 +900,8 @@ fn a_raw_bsrn_file_runs() {
 }
 
 /// A gzip-compressed measurement file is held to the plain file's limit once decompressed
-/// (64 MiB): 65 MiB of blank lines in 66 KB are refused with a one-line error naming the file.
+/// (64 MiB): 65 MiB of blank lines in under 1 MiB of gzip are refused with a one-line error
+/// naming the file.
 #[test]
 fn a_compressed_file_is_bounded_when_decompressed() {
     use std::io::Write;
