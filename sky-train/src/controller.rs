@@ -283,9 +283,15 @@ pub fn parse_measurements(
     format: MeasurementFormat,
     each: &mut dyn FnMut(&MeasuredRow) -> Result<()>,
 ) -> Result<()> {
-    if format == MeasurementFormat::Bsrn {
-        return parse_bsrn(input, source, each);
-    }
+    // The line-based formats' layouts come from their header; BSRN's records have their own
+    // reader.
+    let layout_of: fn(&str, usize, &str) -> Result<Layout, ParamError> = match format {
+        MeasurementFormat::Bsrn => return parse_bsrn(input, source, each),
+        MeasurementFormat::Csv => Layout::csv,
+        MeasurementFormat::Midc => Layout::midc,
+        MeasurementFormat::Srml => Layout::srml,
+        MeasurementFormat::Surfrad => |_, _, _| Ok(Layout::Surfrad),
+    };
     let mut lines = crate::csv_input::lines(input, source);
     let mut next = || loop {
         match lines.next_line() {
@@ -296,22 +302,15 @@ pub fn parse_measurements(
     let Some((header_line, header)) = next()? else {
         return Err(ParamError(format!("{source}: the file is empty (no header line)")).into());
     };
-    let layout = match format {
-        MeasurementFormat::Csv => Layout::csv(source, header_line, &header)?,
-        MeasurementFormat::Midc => Layout::midc(source, header_line, &header)?,
-        MeasurementFormat::Srml => Layout::srml(source, header_line, &header)?,
-        MeasurementFormat::Bsrn => unreachable!("BSRN files are parsed by parse_bsrn, above"),
-        MeasurementFormat::Surfrad => {
-            // The station's name, then its latitude, longitude and elevation.
-            if next()?.is_none() {
-                return Err(ParamError(format!(
-                    "{source}: a SURFRAD file has two header lines (station; latitude, longitude, elevation)"
-                ))
-                .into());
-            }
-            Layout::Surfrad
-        }
-    };
+    let layout = layout_of(source, header_line, &header)?;
+    // SURFRAD's first line names the station, its second gives the latitude, longitude and
+    // elevation.
+    if matches!(layout, Layout::Surfrad) && next()?.is_none() {
+        return Err(ParamError(format!(
+            "{source}: a SURFRAD file has two header lines (station; latitude, longitude, elevation)"
+        ))
+        .into());
+    }
     let mut rows = InOrder::default();
     while let Some((n, line)) = next()? {
         let error = |what: String| ParamError(format!("{source} line {n}: {what}"));
@@ -693,15 +692,7 @@ impl Layout {
                 dhi,
             } => {
                 let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-                let int = |i: usize, column: &str, max: u32| -> Result<u32, ParamError> {
-                    let v = fields.get(i).copied().unwrap_or("");
-                    v.parse::<u32>().ok().filter(|&x| x <= max).ok_or_else(|| {
-                        error(format!(
-                            "{column} `{}`: expected an integer up to {max}",
-                            shown(v)
-                        ))
-                    })
-                };
+                let int = |i: usize, column: &str, range| integer(&fields, i, column, range, error);
                 let number = |i: usize, column: &str| -> Result<Option<f32>, ParamError> {
                     let v = fields.get(i).copied().unwrap_or("");
                     let x = field_number(v).ok_or_else(|| {
@@ -709,14 +700,9 @@ impl Layout {
                     })?;
                     Ok((x > MIDC_MISSING).then_some(x))
                 };
-                let y = int(year, "Year", 2999)?;
-                let day = int(doy, "DOY", 366)?;
-                let t = int(hhmm, "the time (HHMM)", 2359)?;
-                if y < 1 || day < 1 || t % 100 > 59 {
-                    return Err(error(format!(
-                        "Year {y}, DOY {day}, time {t:04}: not a time (years 1-2999, DOY 1-366, HHMM)"
-                    )));
-                }
+                let y = int(year, "Year", 1..=2999)?;
+                let day = int(doy, "DOY", 1..=366)?;
+                let t = int(hhmm, "the time (HHMM)", 0..=2359)?;
                 let Some(g) = number(ghi, "the global irradiance")? else {
                     return Ok(None);
                 };
@@ -724,13 +710,8 @@ impl Layout {
                     Some(i) => number(i, "the diffuse irradiance")?,
                     None => None,
                 };
-                #[allow(clippy::cast_possible_wrap)] // y <= 2999
-                let start = UnixTime::from_civil(y as i32, 1, 1, 0, 0, 0.0).0;
-                let unix = UnixTime(
-                    start
-                        + f64::from(day - 1) * 86_400.0
-                        + f64::from((t / 100 + offset_hours) * 3600 + (t % 100) * 60),
-                );
+                let unix = standard_time(y, day, t, offset_hours)
+                    .ok_or_else(|| error(format!("the time {t:04}: not HHMM")))?;
                 Ok(Some((unix, station_reading(g, d))))
             }
             Self::Surfrad => {
@@ -771,20 +752,7 @@ impl Layout {
             }
             Self::Srml { year, ghi, dhi } => {
                 let fields: Vec<&str> = line.split('\t').map(str::trim).collect();
-                let int = |i: usize, column: &str, range: std::ops::RangeInclusive<u32>| {
-                    let v = fields.get(i).copied().unwrap_or("");
-                    v.parse::<u32>()
-                        .ok()
-                        .filter(|x| range.contains(x))
-                        .ok_or_else(|| {
-                            error(format!(
-                                "{column} `{}`: expected an integer in {}-{}",
-                                shown(v),
-                                range.start(),
-                                range.end()
-                            ))
-                        })
-                };
+                let int = |i: usize, column: &str, range| integer(&fields, i, column, range, error);
                 let value = |i: usize, column: &str| -> Result<Option<f32>, ParamError> {
                     let (Some(v), Some(flag)) = (fields.get(i), fields.get(i + 1)) else {
                         return Err(error(format!(
@@ -801,9 +769,6 @@ impl Layout {
                 };
                 let day = int(0, "the day of year", 1..=366)?;
                 let t = int(1, "the time (HHMM)", 1..=2400)?;
-                if t % 100 > 59 {
-                    return Err(error(format!("the time {t:04}: not HHMM")));
-                }
                 let Some(g) = value(ghi, "the global irradiance")? else {
                     return Ok(None);
                 };
@@ -811,18 +776,51 @@ impl Layout {
                     Some(i) => value(i, "the diffuse irradiance")?,
                     None => None,
                 };
-                #[allow(clippy::cast_possible_wrap)] // year <= 2999
-                let start = UnixTime::from_civil(year as i32, 1, 1, 0, 0, 0.0).0;
                 // Pacific Standard Time, 8 hours behind UTC; 2400 is the next day's 00:00.
-                let unix = UnixTime(
-                    start
-                        + f64::from(day - 1) * 86_400.0
-                        + f64::from((t / 100 + 8) * 3600 + (t % 100) * 60),
-                );
+                let unix = standard_time(year, day, t, 8)
+                    .ok_or_else(|| error(format!("the time {t:04}: not HHMM")))?;
                 Ok(Some((unix, station_reading(g, d))))
             }
         }
     }
+}
+
+/// Field `i` of `fields` as an integer in `range`, or an error naming `column`.
+fn integer(
+    fields: &[&str],
+    i: usize,
+    column: &str,
+    range: std::ops::RangeInclusive<u32>,
+    error: &dyn Fn(String) -> ParamError,
+) -> Result<u32, ParamError> {
+    let v = fields.get(i).copied().unwrap_or("");
+    v.parse::<u32>()
+        .ok()
+        .filter(|x| range.contains(x))
+        .ok_or_else(|| {
+            error(format!(
+                "{column} `{}`: expected an integer in {}-{}",
+                crate::csv_input::shown(v),
+                range.start(),
+                range.end()
+            ))
+        })
+}
+
+/// The time `hhmm` (hours and minutes) of day `day` (1 = 1 January) of `year` in a standard
+/// time `offset_hours` behind UTC, as the stations' files give it; `None` unless the minutes
+/// are 0-59.
+fn standard_time(year: u32, day: u32, hhmm: u32, offset_hours: u32) -> Option<UnixTime> {
+    if hhmm % 100 > 59 {
+        return None;
+    }
+    let year = i32::try_from(year).ok()?;
+    let start = UnixTime::from_civil(year, 1, 1, 0, 0, 0.0).0;
+    Some(UnixTime(
+        start
+            + f64::from(day.saturating_sub(1)) * 86_400.0
+            + f64::from((hhmm / 100 + offset_hours) * 3600 + (hhmm % 100) * 60),
+    ))
 }
 
 /// The fields of one schedule row after its time ([`SCHEDULE_HEADER`]), each number by
@@ -1230,6 +1228,43 @@ mod tests {
                 .expect_err("long")
                 .contains("line 2: the line is longer")
         );
+    }
+
+    /// MIDC files: the header's time zone and irradiance columns, the time in UTC, and each
+    /// malformed field named with its line.
+    #[test]
+    fn midc_files_are_read_and_bad_ones_named() {
+        let header = "Year,DOY,MST,Global Horiz [W/m^2],Diffuse Horiz [W/m^2]\n";
+        let rows = parse_as(
+            &format!("{header}2018,291,400,-1.85,0.0\n2018,291,1259,-7999,10\n2018,365,2359,5,3\n"),
+            MeasurementFormat::Midc,
+        )
+        .expect("MIDC");
+        assert_eq!(rows.len(), 2, "the missing GHI's row skipped");
+        assert_eq!(rows[0].unix.rfc3339(), "2018-10-18T11:00:00Z");
+        assert!(
+            matches!(rows[0].measurement, Measurement::Irradiance { global, diffuse } if global == -1.85 && diffuse == 0.0)
+        );
+        assert_eq!(rows[1].unix.rfc3339(), "2019-01-01T06:59:00Z");
+        for (row, needle) in [
+            ("2018,291,461,5,3", "line 2: the time 0461: not HHMM"),
+            ("2018,291,2400,5,3", "line 2: the time (HHMM) `2400`"),
+            (
+                "0,291,400,5,3",
+                "line 2: Year `0`: expected an integer in 1-2999",
+            ),
+            ("2018,367,400,5,3", "line 2: DOY `367`"),
+            ("2018,291,400,x,3", "line 2: the global irradiance `x`"),
+        ] {
+            let e = parse_as(&format!("{header}{row}\n"), MeasurementFormat::Midc).expect_err(row);
+            assert!(e.contains(needle) && !e.contains('\n'), "{row}: {e}");
+        }
+        let e = parse_as(
+            "Year,DOY,CET,Global Horiz [W/m^2]\n",
+            MeasurementFormat::Midc,
+        )
+        .expect_err("zone");
+        assert!(e.contains("line 1: the MIDC header"), "{e}");
     }
 
     /// SRML and BSRN files: the header's year and elements, the fixed columns, missing values,

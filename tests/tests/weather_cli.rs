@@ -583,6 +583,48 @@ fn station_file(name: &str) -> String {
     format!("{}/data/stations/{name}", env!("CARGO_MANIFEST_DIR"))
 }
 
+/// A station: latitude, longitude (east positive) and elevation, as `schedule` takes them.
+type Site = [&'static str; 3];
+/// SURFRAD Alamosa, Colorado (its header writes the longitude positive west).
+const ALAMOSA: Site = ["37.70", "-105.92", "2317"];
+/// NREL MIDC, University of Arizona, Tucson.
+const TUCSON: Site = ["32.22969", "-110.95534", "786"];
+/// University of Oregon SRML, Eugene.
+const EUGENE: Site = ["44.0467", "-123.0743", "150"];
+/// BSRN Payerne, Switzerland.
+const PAYERNE: Site = ["46.815", "6.944", "491"];
+
+/// `schedule --measurements FILE --measurements-format FORMAT` at `site`, with `extra`
+/// arguments: the CSV it writes, or a panic with the error.
+fn schedule_station(file: &str, site: Site, format: &str, extra: &[&str]) -> String {
+    let [lat, lon, elevation] = site;
+    let mut args = vec![
+        "schedule",
+        "--lat",
+        lat,
+        "--lon",
+        lon,
+        "--elevation",
+        elevation,
+        "--measurements",
+        file,
+        "--measurements-format",
+        format,
+    ];
+    args.extend_from_slice(extra);
+    run(&args, "").unwrap_or_else(|e| panic!("{}", e.0))
+}
+
+/// The data rows of `schedule`'s CSV, each a map from the header's column names to the row's
+/// fields.
+fn rows_of(csv: &str) -> Vec<std::collections::HashMap<&str, &str>> {
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().expect("header").split(',').collect();
+    lines
+        .map(|l| header.iter().copied().zip(l.split(',')).collect())
+        .collect()
+}
+
 /// Every field of every data row of `csv` is empty or a finite number (the first, the time,
 /// aside), and the rows have the header's number of fields.
 fn assert_finite_fields(csv: &str) {
@@ -622,53 +664,33 @@ fn a_raw_surfrad_file_runs() {
     assert!(rows.iter().any(|r| r[8] < -1.0 && r[9] == 0.0));
     assert!(rows.iter().any(|r| r[14] > r[8] + 1.0 && r[15] == 0.0));
     assert!(rows.iter().any(|r| r[7] > 100.0));
-    let out = run(
-        &[
-            "schedule",
-            "--lat",
-            "37.70",
-            "--lon",
-            "-105.92",
-            "--elevation",
-            "2317",
-            "--measurements",
-            &file,
-            "--measurements-format",
-            "surfrad",
-        ],
-        "",
-    )
-    .unwrap_or_else(|e| panic!("{}", e.0));
+    let out = schedule_station(&file, ALAMOSA, "surfrad", &[]);
     assert_finite_fields(&out);
     let kept: Vec<&Vec<f64>> = rows
         .iter()
         .filter(|r| r[9] == 0.0 && r[8] > -9999.0)
         .collect();
-    let lines: Vec<Vec<&str>> = out
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').collect())
-        .collect();
+    let lines = rows_of(&out);
     assert_eq!(lines.len(), kept.len());
     let (mut worst_zenith, mut clamped, mut night) = (0.0f64, 0, 0);
     for (f, r) in lines.iter().zip(&kept) {
         let want = format!("2016-01-01T{:02}:{:02}:00Z", r[4], r[5]);
-        assert_eq!(f[0], want);
+        assert_eq!(f["utc"], want);
         // SURFRAD's `zen` is the apparent (refracted) zenith.
-        worst_zenith = worst_zenith.max((num(f[4]) - r[7]).abs());
-        let (ghi, dhi) = (num(f[15]), num(f[16]));
+        worst_zenith = worst_zenith.max((num(f["apparent_zenith_deg"]) - r[7]).abs());
+        let (ghi, dhi) = (num(f["ghi_wm2"]), num(f["dhi_wm2"]));
         assert!((ghi - r[8].max(0.0)).abs() < 1e-4, "{f:?} {r:?}");
         assert!(dhi <= ghi, "{f:?}");
         if r[15] == 0.0 && r[14] > r[8].max(0.0) {
             clamped += 1;
             assert_eq!(
-                f[16], f[15],
+                f["dhi_wm2"], f["ghi_wm2"],
                 "a diffuse above the global counts as it: {f:?}"
             );
         }
         if r[7] > 90.0 {
             night += 1;
-            assert_eq!(f[23], "0", "{f:?}");
+            assert_eq!(f["sky_type"], "0", "{f:?}");
         }
     }
     println!(
@@ -695,44 +717,30 @@ fn a_raw_midc_file_runs() {
         .map(|l| l.split(',').map(num).collect())
         .collect();
     assert!(rows.iter().any(|r| r[6] < -1.0));
-    let out = run(
-        &[
-            "schedule",
-            "--lat",
-            "32.22969",
-            "--lon",
-            "-110.95534",
-            "--elevation",
-            "786",
-            "--measurements",
-            &file,
-            "--measurements-format",
-            "midc",
-        ],
-        "",
-    )
-    .unwrap_or_else(|e| panic!("{}", e.0));
+    let out = schedule_station(&file, TUCSON, "midc", &[]);
     assert_finite_fields(&out);
-    let lines: Vec<Vec<&str>> = out
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').collect())
-        .collect();
+    let lines = rows_of(&out);
     assert_eq!(lines.len(), rows.len());
     for (f, r) in lines.iter().zip(&rows) {
         // HHMM in MST, 7 hours behind UTC.
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let hhmm = r[3] as u32;
         let want = format!("2018-10-18T{:02}:{:02}:00Z", hhmm / 100 + 7, hhmm % 100);
-        assert_eq!(f[0], want);
-        assert!((num(f[15]) - r[6].max(0.0)).abs() < 1e-3, "{f:?} {r:?}");
-        let dhi = num(f[16]);
-        assert!(dhi <= num(f[15]), "{f:?}");
+        assert_eq!(f["utc"], want);
+        assert!(
+            (num(f["ghi_wm2"]) - r[6].max(0.0)).abs() < 1e-3,
+            "{f:?} {r:?}"
+        );
+        let dhi = num(f["dhi_wm2"]);
+        assert!(dhi <= num(f["ghi_wm2"]), "{f:?}");
         if r[6] > 50.0 {
             assert!((dhi - r[5]).abs() < 1e-3, "the file's diffuse: {f:?} {r:?}");
         }
     }
-    let up = lines.iter().filter(|f| num(f[3]) > 0.0).count();
+    let up = lines
+        .iter()
+        .filter(|f| num(f["sun_elevation_deg"]) > 0.0)
+        .count();
     println!("MIDC UAT: {} rows, {up} with the sun up", lines.len());
     assert!(up > 100 && up < lines.len());
 }
@@ -756,29 +764,9 @@ fn a_raw_srml_file_runs() {
         rows.iter().any(|r| r[2] == 0.0) && rows.iter().any(|r| r[2] > 100.0),
         "night and day rows as delivered"
     );
-    let out = run(
-        &[
-            "schedule",
-            "--lat",
-            "44.0467",
-            "--lon",
-            "-123.0743",
-            "--elevation",
-            "150",
-            "--measurements",
-            &file,
-            "--measurements-format",
-            "srml",
-        ],
-        "",
-    )
-    .unwrap_or_else(|e| panic!("{}", e.0));
+    let out = schedule_station(&file, EUGENE, "srml", &[]);
     assert_finite_fields(&out);
-    let lines: Vec<Vec<&str>> = out
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').collect())
-        .collect();
+    let lines = rows_of(&out);
     assert_eq!(lines.len(), rows.len());
     for (f, r) in lines.iter().zip(&rows) {
         // Day of year 1 of 2018, HHMM in PST, 8 hours behind UTC.
@@ -791,9 +779,12 @@ fn a_raw_srml_file_runs() {
             minutes % 1440 / 60,
             minutes % 60
         );
-        assert_eq!(f[0], want);
-        assert!((num(f[15]) - r[2].max(0.0)).abs() < 1e-3, "{f:?} {r:?}");
-        assert!(num(f[16]) <= num(f[15]), "{f:?}");
+        assert_eq!(f["utc"], want);
+        assert!(
+            (num(f["ghi_wm2"]) - r[2].max(0.0)).abs() < 1e-3,
+            "{f:?} {r:?}"
+        );
+        assert!(num(f["dhi_wm2"]) <= num(f["ghi_wm2"]), "{f:?}");
     }
 }
 
@@ -833,31 +824,9 @@ fn a_raw_bsrn_file_runs() {
         .into_iter()
         .filter(|m| m[2] > -999.0)
         .collect();
-    let args = |path: &str, extra: &[&str]| {
-        let mut a = vec![
-            "schedule",
-            "--lat",
-            "46.815",
-            "--lon",
-            "6.944",
-            "--elevation",
-            "491",
-            "--measurements",
-            path,
-        ];
-        if !extra.contains(&"--measurements-format") {
-            a.extend(["--measurements-format", "bsrn"]);
-        }
-        a.extend_from_slice(extra);
-        run(&a, "").unwrap_or_else(|e| panic!("{}", e.0))
-    };
-    let out = args(&file, &[]);
+    let out = schedule_station(&file, PAYERNE, "bsrn", &[]);
     assert_finite_fields(&out);
-    let lines: Vec<Vec<&str>> = out
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').collect())
-        .collect();
+    let lines = rows_of(&out);
     assert_eq!(lines.len(), minutes.len());
     assert!(minutes.len() > 1400, "a day of minutes");
     let mut set_aside = 0;
@@ -865,8 +834,8 @@ fn a_raw_bsrn_file_runs() {
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let (day, minute) = (m[0] as u32, m[1] as u32);
         let want = format!("2016-06-{day:02}T{:02}:{:02}:00Z", minute / 60, minute % 60);
-        assert_eq!(f[0], want);
-        let (ghi, dhi) = (num(f[15]), num(f[16]));
+        assert_eq!(f["utc"], want);
+        let (ghi, dhi) = (num(f["ghi_wm2"]), num(f["dhi_wm2"]));
         assert!((ghi - m[2].max(0.0)).abs() < 1e-3, "{f:?} {m:?}");
         assert!(dhi <= ghi, "{f:?}");
         let excess = m[3] - m[2];
@@ -885,17 +854,18 @@ fn a_raw_bsrn_file_runs() {
     let dir = tempfile::tempdir().expect("temporary directory");
     let plain = dir.path().join("pay0616.dat");
     std::fs::write(&plain, &text).expect("write");
-    assert_eq!(args(plain.to_str().expect("utf-8"), &[]), out);
+    let plain = plain.to_str().expect("utf-8");
+    assert_eq!(schedule_station(plain, PAYERNE, "bsrn", &[]), out);
     // --global-only: the file's global alone, split as the same globals in the project's CSV.
     let csv = dir.path().join("ghi.csv");
     let mut rows = String::from("utc,ghi_wm2\n");
     for (f, m) in lines.iter().zip(&minutes) {
-        rows.push_str(&format!("{},{}\n", f[0], m[2]));
+        rows.push_str(&format!("{},{}\n", f["utc"], m[2]));
     }
     std::fs::write(&csv, rows).expect("write");
     let csv = csv.to_str().expect("utf-8");
-    let alone = args(&file, &["--global-only"]);
-    assert_eq!(alone, args(csv, &["--measurements-format", "csv"]));
+    let alone = schedule_station(&file, PAYERNE, "bsrn", &["--global-only"]);
+    assert_eq!(alone, schedule_station(csv, PAYERNE, "csv", &[]));
     assert_ne!(alone, out, "the split differs from the measured diffuse");
 }
 
