@@ -30,7 +30,10 @@ qemu_riscv="$root/.tools/qemu-misc/usr/bin/qemu-system-riscv32"
 # decimal, 48,000 B (not 48 KiB = 49,152 B), a 64 KiB part with room left.
 controller_flash_limit=48000
 bare_metal_targets=(thumbv7em-none-eabihf riscv32imac-unknown-none-elf)
-targets=("${bare_metal_targets[@]}" wasm32-unknown-unknown)
+# The firmware below builds sky-core for both bare-metal targets the same way (core only), so
+# the workspace's own build needs only the Cortex-M4F (whose core the defmt build reuses) and
+# wasm32, which has no firmware.
+targets=(thumbv7em-none-eabihf wasm32-unknown-unknown)
 
 step() { printf '\n==> %s\n' "$*"; }
 mode=${1:-all}
@@ -54,13 +57,15 @@ export RUSTC_BOOTSTRAP=1
 firmware() {
   local target=$1 machine=$2 cpu=$3 bin=$4 features=${5:-}
   shift 5
-  local dir=$target_dir${features:+-$features}
-  local elf="$dir/$target/release/$bin"
+  local built="$target_dir/$target/release/$bin"
+  # A build with features is kept beside the default one as <bin>-<features>.
+  local elf=$built${features:+-$features}
 
   step "firmware: build $bin for $target ($machine)${features:+ with $features}"
   # Run from firmware/, so that firmware/.cargo/config.toml is found.
   (cd "$root/firmware" && cargo build --release --locked --target "$target" --bin "$bin" \
-    --target-dir "$dir" ${features:+--features "$features"})
+    --target-dir "$target_dir" ${features:+--features "$features"})
+  [ -z "$features" ] || cp "$built" "$elf"
 
   step "firmware: size of $bin on $machine (text = flash: vectors, code, constants; data + bss = static RAM)"
   if command -v llvm-size >/dev/null; then
@@ -102,24 +107,31 @@ done
 step "sky-core: build (lib only, core only) for ${targets[*]}"
 # The cross sysroot holds no prebuilt library for these targets, and build-std builds only
 # `core`: a crate anywhere in sky-core's tree that used `std` or `alloc` would fail to compile
-# here ("can't find crate"). So this build succeeding is itself the proof that sky-core and its
-# dependencies need neither.
+# here ("can't find crate"). So this build succeeding (and the firmware's, for RISC-V) is itself
+# the proof that sky-core and its dependencies need neither.
+# Built with the firmware's release profile (firmware/Cargo.toml), so that the firmware's builds
+# for the Cortex-M4F reuse this core instead of building their own.
 target_args=()
 for target in "${targets[@]}"; do target_args+=(--target "$target"); done
+firmware_profile=(--config 'profile.release.opt-level="s"' --config 'profile.release.lto=true'
+  --config 'profile.release.codegen-units=1' --config 'profile.release.debug=true')
 (cd "$root" && cargo build -p sky-core --lib --release "${target_args[@]}" \
-  --config "$cross_config" --target-dir "$target_dir")
+  --config "$cross_config" "${firmware_profile[@]}" --target-dir "$target_dir")
 
 step "sky-core: build with the defmt feature for thumbv7em-none-eabihf"
 (cd "$root" && cargo build -p sky-core --lib --release --features defmt \
-  --target thumbv7em-none-eabihf --config "$cross_config" --target-dir "$target_dir")
+  --target thumbv7em-none-eabihf --config "$cross_config" "${firmware_profile[@]}" \
+  --target-dir "$target_dir")
 
 # Each run: target, board (qemu machine and CPU), binary. The target picks the board's memory
 # map in firmware/build.rs; every binary checks its values against the host's and exits 0 or 1.
-# A fourth field names firmware features: the micromath build goes to its own target folder,
-# for its size next to the default one (docs/firmware.md, "Flash and RAM").
+# A fourth field names firmware features: the micromath build shares the target folder (and
+# its core) and is kept as sky-firmware-micromath, built first so that the default one is the
+# sky-firmware left there, for its size next to the default one (docs/firmware.md, "Flash and
+# RAM").
 runs=(
-  "thumbv7em-none-eabihf mps2-an386 cortex-m4 sky-firmware"            # Preetham and neural, f32
-  "thumbv7em-none-eabihf mps2-an386 cortex-m4 sky-firmware micromath"  # the same, micromath
+  "thumbv7em-none-eabihf mps2-an386 cortex-m4 sky-firmware micromath"  # Preetham and neural,
+  "thumbv7em-none-eabihf mps2-an386 cortex-m4 sky-firmware"            # f32: micromath, libm
   "thumbv7m-none-eabi lm3s6965evb cortex-m3 fixed-neural"              # fixed-point neural
   "thumbv6m-none-eabi microbit cortex-m0 fixed-neural"                 # fixed-point, ARMv6-M
   "thumbv7em-none-eabihf mps2-an386 cortex-m4 controller"              # controller's day, FPU

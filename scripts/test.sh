@@ -88,6 +88,7 @@ summary() {
 # way, and only to see that they build: unoptimised (sky-train at opt-level 2 took most of the
 # step).
 dev_profile=(--config 'profile.dev.debug="line-tables-only"'
+  --config 'profile.dev.build-override.debug="line-tables-only"'
   --config 'profile.dev.package."*".opt-level=2'
   --config 'profile.dev.package.sky-core.opt-level=0'
   --config 'profile.dev.package.sky-train.opt-level=0')
