@@ -469,8 +469,9 @@ fn weather_row(s: &Step) -> [f64; 8] {
 
 /// The controller's step at each of `times`: the Python package's `controller_step`.
 #[pyfunction]
-#[pyo3(signature = (latitude, longitude, times, aod, elevation, algorithm, light, full_scale_lux,
-                    decomposition, lux, ghi, dhi, luminaire, history, scalar))]
+#[pyo3(signature = (latitude, longitude, times, aod, elevation, ozone_du, precipitable_water,
+                    algorithm, light, full_scale_lux, decomposition, lux, ghi, dhi, luminaire,
+                    history, scalar))]
 #[allow(clippy::too_many_arguments)] // the Python signature's keywords
 pub(crate) fn controller_series<'py>(
     py: Python<'py>,
@@ -479,6 +480,8 @@ pub(crate) fn controller_series<'py>(
     times: PyReadonlyArray1<'py, i64>,
     aod: PyReadonlyArray1<'py, f32>,
     elevation: f64,
+    ozone_du: Option<f32>,
+    precipitable_water: Option<f32>,
     algorithm: &str,
     light: &str,
     full_scale_lux: f32,
@@ -504,15 +507,30 @@ pub(crate) fn controller_series<'py>(
         ));
     }
     let aod = Broadcast::new("aod", &aod, times.len())?;
+    let defaults = Settings::default();
+    // sky-core takes any water (clamped to [0, 10] cm); a caller's value out of that range is
+    // an error here, as it is on the command line (`schedule --water-vapour`).
+    let precipitable_water = match precipitable_water {
+        None => defaults.precipitable_water,
+        Some(w) if (0.0..=10.0).contains(&w) => w,
+        Some(w) => {
+            return Err(value_error(
+                "precipitable_water",
+                format!("{w} cm is outside [0, 10] cm"),
+            ));
+        }
+    };
     // The fields bound here; sky-core's defaults for the rest.
-    #[allow(clippy::needless_update)] // sky-core's settings grow: the site's parameters
+    #[allow(clippy::needless_update)] // sky-core's settings grow
     let settings = Settings {
         aerosol_optical_depth: aod.at(0),
+        ozone_du: ozone_du.unwrap_or(defaults.ozone_du),
+        precipitable_water,
         light: self::light(light)?,
         full_scale_lux,
         sun: time::algorithm(algorithm)?,
         decomposition: self::decomposition(decomposition)?,
-        ..Settings::default()
+        ..defaults
     };
     let lamp = self::luminaire(luminaire)?;
     let readings = Readings::new(lux, ghi, dhi, times.len())?;
@@ -535,6 +553,9 @@ pub(crate) fn controller_series<'py>(
             let context = match e {
                 SkyError::OutOfRange { parameter, .. } if parameter.starts_with("aerosol") => {
                     aod.element(i)
+                }
+                SkyError::OutOfRange { parameter, .. } if parameter.starts_with("ozone") => {
+                    "ozone_du".to_owned()
                 }
                 SkyError::OutOfRange { parameter, .. } if parameter.starts_with("full-scale") => {
                     "full_scale_lux".to_owned()

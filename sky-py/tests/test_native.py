@@ -110,6 +110,28 @@ def measurements(rng, n):
     return out
 
 
+def step_case(site, t, measurement, **settings):
+    """The reference binary's `step` case at `site` (latitude, longitude, elevation) and time
+    `t` (microseconds) with `measurement`: the fast sun, aod 0.2, the global light at 10 klx
+    full scale, the default split and luminaire, unless `settings` say otherwise."""
+    lat, lon, elevation = site
+    case = {
+        "kind": "step",
+        "latitude": lat,
+        "longitude": lon,
+        "elevation": elevation,
+        "algorithm": "fast",
+        "time": fields(t),
+        "aod": float(np.float32(0.2)),
+        "light": "global",
+        "full_scale_lux": 10_000.0,
+        "decomposition": None,
+        "measurement": measurement,
+        "luminaire": None,
+    }
+    return case | settings
+
+
 @pytest.mark.parametrize(
     "light, decomposition, luminaire",
     [
@@ -131,20 +153,15 @@ def test_controller_step_equals_sky_core(native, light, decomposition, luminaire
         readings = measurements(rng, len(micros))
         full_scale = float(np.float32(rng.uniform(500.0, 20_000.0)))
         cases = [
-            {
-                "kind": "step",
-                "latitude": lat,
-                "longitude": lon,
-                "elevation": elevation,
-                "algorithm": "fast",
-                "time": fields(t),
-                "aod": float(np.float32(0.2)),
-                "light": light,
-                "full_scale_lux": full_scale,
-                "decomposition": decomposition,
-                "measurement": m,
-                "luminaire": luminaire,
-            }
+            step_case(
+                (lat, lon, elevation),
+                t,
+                m,
+                light=light,
+                full_scale_lux=full_scale,
+                decomposition=decomposition,
+                luminaire=luminaire,
+            )
             for t, m in zip(micros, readings)
         ]
         want = native(cases)
@@ -212,21 +229,9 @@ def test_controller_step_with_history_equals_sky_core(native, decomposition):
     cloud = np.where((minutes > 60) & (minutes < 80), 0.35, 1.0)
     ghi = np.float32(clear * cloud * (1.0 + 0.002 * rng.standard_normal(len(minutes))))
     cases = [
-        {
-            "kind": "step",
-            "latitude": lat,
-            "longitude": lon,
-            "elevation": elevation,
-            "algorithm": "fast",
-            "time": fields(t),
-            "aod": float(np.float32(0.2)),
-            "light": "global",
-            "full_scale_lux": 10_000.0,
-            "decomposition": decomposition,
-            "measurement": {"ghi": float(g)},
-            "luminaire": None,
-            "history": "morning",
-        }
+        step_case(
+            SITES[0], t, {"ghi": float(g)}, decomposition=decomposition, history="morning"
+        )
         for t, g in zip(micros, ghi)
     ]
     want = native(cases)
@@ -258,6 +263,59 @@ def test_controller_step_with_history_equals_sky_core(native, decomposition):
     backwards[5] = backwards[3]
     with pytest.raises(ValueError, match=r"times\[5\]"):
         skymodels.controller_step(lat, lon, as_times(backwards), ghi=ghi, history=True)
+
+
+def test_controller_step_site_parameters_equal_sky_core(native):
+    """ozone_du and precipitable_water reach sky-core's Settings: the steps equal the native
+    ones at a high-latitude site's twilight and day, without a measurement and with each kind,
+    and they change what they should (the ozone the clear sky in twilight, the water the lux of
+    a measured irradiance). Out of range, each is refused naming its keyword."""
+    rng = np.random.default_rng(11)
+    lat, lon, elevation = SITES[1]
+    micros = micros_between(rng, FAST_YEARS, 240)
+    readings = measurements(rng, len(micros))
+    for ozone, water in [(230.0, 0.4), (460.0, 4.5)]:
+        cases = [
+            step_case(SITES[1], t, m, ozone_du=ozone, precipitable_water=water)
+            for t, m in zip(micros, readings)
+        ]
+        want = native(cases)
+        keywords = dict(
+            aod=np.float32(0.2), elevation=elevation, ozone_du=ozone, precipitable_water=water
+        )
+        changed = {}
+        for kind in [None, "lux", "ghi", "ghi+dhi"]:
+            ok = [
+                i
+                for i, m in enumerate(readings)
+                if ((m is None and kind is None) or (m is not None and "+".join(m) == kind))
+                and "error" not in want[i]
+            ]
+            values = {}
+            if kind is not None:
+                for name in kind.split("+"):
+                    values[name] = np.float32([readings[i][name] for i in ok])
+            times = as_times(micros[ok])
+            got = skymodels.controller_step(lat, lon, times, **values, **keywords)
+            expected = [want[i] for i in ok]
+            for key in ["illuminance", "x", "y", "cct", "duv", "melanopic_edi"]:
+                assert_same32(got[key], expected, key)
+            default = skymodels.controller_step(
+                lat, lon, times, **values, aod=np.float32(0.2), elevation=elevation
+            )
+            a, b = got["illuminance"], default["illuminance"]
+            changed[kind] = np.max(np.abs(a - b) / np.maximum(b, 1e-6))
+        # Without a measurement the ozone moves the twilight's clear sky; with an irradiance
+        # the water moves its lux (by per cents); a lux reading is the light itself (its colour
+        # under cloud, which the clear sky moves, is scaled back to it: a rounding apart).
+        assert min(changed[None], changed["ghi"], changed["ghi+dhi"]) > 1e-3, changed
+        assert changed["lux"] < 1e-6, changed
+    t = as_times(micros[:1])
+    with pytest.raises(ValueError, match=r"ozone_du.*\[200, 500\]"):
+        skymodels.controller_step(lat, lon, t, ozone_du=150.0)
+    for water in [-0.1, 10.5, float("nan")]:
+        with pytest.raises(ValueError, match=r"precipitable_water.*\[0, 10\] cm"):
+            skymodels.controller_step(lat, lon, t, ghi=500.0, precipitable_water=water)
 
 
 def view_directions(rng, n=240):

@@ -219,6 +219,8 @@ def controller_step(
     dhi=None,
     aod=None,
     elevation=0.0,
+    ozone_du=None,
+    precipitable_water=None,
     algorithm="fast",
     light="global",
     full_scale_lux=10_000.0,
@@ -238,6 +240,14 @@ def controller_step(
     ----------
     latitude, longitude, times, aod, elevation, algorithm
         As ``daylight``'s.
+    ozone_du : float, optional
+        The clear atmosphere's total ozone column, Dobson units, 200 to 500 (it matters in
+        twilight); None: sky-core's default (``controller::Settings``). ``sky-train site``
+        prints a site's month.
+    precipitable_water : float, optional
+        The site's precipitable water, cm, 0 to 10, at which a measured irradiance becomes lux
+        (Perez's efficacies: a dry site's clear light has more lumens per watt); None: sky-core's
+        default, 2 cm.
     lux, ghi, dhi : float or array, keyword
         The measurement, if any: ``lux`` alone, or ``ghi`` with or without ``dhi``.
     light : {"global", "sky"}
@@ -289,6 +299,8 @@ def controller_step(
         micros,
         _per_time("aod", aod, shape, DEFAULT_AOD),
         float(elevation),
+        None if ozone_du is None else float(ozone_du),
+        None if precipitable_water is None else float(precipitable_water),
         algorithm,
         light,
         float(full_scale_lux),

@@ -171,14 +171,22 @@ fn step_case(case: &Value, histories: &mut Histories) -> Outcome {
         Some("engerer2-global") => Decomposition::Engerer2Global,
         Some(other) => return Err(BadCase(format!("decomposition {other}"))),
     };
-    #[allow(clippy::needless_update)] // sky-core's settings grow: the site's parameters
+    let defaults = Settings::default();
+    let or_default = |key: &str, default: f32| {
+        if case[key].is_null() {
+            Ok(default)
+        } else {
+            num32(case, key)
+        }
+    };
     let settings = Settings {
         aerosol_optical_depth: num32(case, "aod")?,
+        ozone_du: or_default("ozone_du", defaults.ozone_du)?,
+        precipitable_water: or_default("precipitable_water", defaults.precipitable_water)?,
         light,
         full_scale_lux: num32(case, "full_scale_lux")?,
         sun: algorithm(case)?,
         decomposition,
-        ..Settings::default()
     };
     let m = &case["measurement"];
     let measurement = if m.is_null() {
