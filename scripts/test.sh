@@ -24,9 +24,9 @@
 #          there against sky-core's own values (scripts/python.sh test)
 #
 # Two lanes run side by side on the machine's cores: the host lane (clippy, doc, the workspace
-# tests, micromath, publish, doc blocks) in target/debug and target/release, and the other lane
-# (setup, cross, wasm, fuzz, python; the host lane needs nothing setup installs, so it starts at
-# once) in target/cross, target/wasm, fuzz/target and target/python. They share no build
+# tests, micromath, publish) in target/debug, and the other lane (setup, cross, wasm, fuzz,
+# python, doc blocks; the host lane needs nothing setup installs, so it starts at once) in
+# target/cross, target/wasm, fuzz/target, target/python and target/release. They share no build
 # directory, so neither waits for the other's cargo lock, and each fills the other's
 # single-threaded stretches (link-time optimisation, qemu, fuzzing, the browser). The other
 # lane's output is printed when it ends; the first failure in either lane stops both. Each
@@ -115,6 +115,8 @@ other_lane() {
     scripts/fuzz.sh 12
   step other "skymodels: the Python wheel (abi3), in a fresh virtual environment, against sky-core" \
     scripts/python.sh test
+  # Last: a block of docs/browser.md reads the site the wasm step built.
+  step other "the sh and toml blocks of README.md and docs/ run as written" scripts/doc-blocks.sh
 }
 
 step host "cargo fmt --check (the workspace, and the firmware outside it)" fmt
@@ -158,14 +160,13 @@ step host "sky-core's micromath feature: each model's error against its f64 refe
 step host "sky-core's examples run" examples
 step host "cargo publish --dry-run: sky-core, sky-gpu and sky-train package and build from their packaged sources" \
   cargo publish --workspace --dry-run --locked --allow-dirty "${dev_profile[@]}"
-step host "the sh and toml blocks of README.md and docs/ run as written" scripts/doc-blocks.sh
 
-printf '\n==> the host lane passed at %d s; waiting for the other lane (setup, cross, wasm, fuzz, python)\n' \
+printf '\n==> the host lane passed at %d s; waiting for the other lane (setup, cross, wasm, fuzz, python, doc blocks)\n' \
   "$(($(date +%s) - start))"
 lane_status=0
 wait "$lane_pid" || lane_status=$?
 lane_pid=
-printf '\n==> the other lane: setup, cross, wasm, fuzz, python (its output, in order)\n'
+printf '\n==> the other lane: setup, cross, wasm, fuzz, python, doc blocks (its output, in order)\n'
 cat "$lane_log"
 if [ "$lane_status" -ne 0 ]; then
   printf '\nFAIL: the other lane (above), exit status %d\n' "$lane_status" >&2
