@@ -125,10 +125,10 @@ step "sky-core: build with the defmt feature for thumbv7em-none-eabihf"
 
 # Each run: target, board (qemu machine and CPU), binary. The target picks the board's memory
 # map in firmware/build.rs; every binary checks its values against the host's and exits 0 or 1.
-# A fourth field names firmware features: the micromath build shares the target folder (and
-# its core) and is kept as sky-firmware-micromath, built first so that the default one is the
-# sky-firmware left there, for its size next to the default one (docs/firmware.md, "Flash and
-# RAM").
+# A fourth field names firmware features: such a build shares the target folder (and its
+# core) and is kept beside the default one as <bin>-<features>, for its size next to it
+# (docs/firmware.md, "Flash and RAM"); micromath's is built first, so that the sky-firmware
+# left in the folder is the default one.
 runs=(
   "thumbv7em-none-eabihf mps2-an386 cortex-m4 sky-firmware micromath"  # Preetham and neural,
   "thumbv7em-none-eabihf mps2-an386 cortex-m4 sky-firmware"            # f32: micromath, libm

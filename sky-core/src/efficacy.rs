@@ -100,6 +100,11 @@ fn coefficients(table: &EfficacyTable, epsilon: f32) -> [f32; 4] {
 /// what the dew point of 11 °C that gendaymtx assumes gives).
 pub const DEFAULT_PRECIPITABLE_WATER: f32 = 2.0;
 
+/// The precipitable water the efficacies take, cm: [`Efficacy::new`] counts water outside it
+/// as its nearer end (10 cm is above any measured column; Perez et al.'s data reached about
+/// 5 cm).
+pub const PRECIPITABLE_WATER_RANGE_CM: (f32, f32) = (0.0, 10.0);
+
 /// The atmosphere's precipitable water in cm from the surface dew point `dew_point` in °C:
 /// W = exp(0.07 T_d − 0.075) (Wright, Perez, Michalsky, *Luminous efficacy of direct
 /// irradiance: variations with insolation and moisture conditions*, Solar Energy 42(5), 1989,
@@ -143,7 +148,8 @@ pub struct Efficacy {
 
 impl Efficacy {
     /// The efficacies for `condition` (its ε through [`BIN_CENTRES`], module docs), a sun at zenith angle `sun_zenith` (radians) and
-    /// precipitable water `water` (cm; NaN or negative counts as 0, more than 10 cm as 10).
+    /// precipitable water `water` (cm; NaN or negative counts as 0, more than 10 cm as 10:
+    /// [`PRECIPITABLE_WATER_RANGE_CM`]).
     #[must_use]
     pub fn new(condition: &SkyCondition, sun_zenith: f32, water: f32) -> Self {
         let epsilon = condition.epsilon();
@@ -152,7 +158,8 @@ impl Efficacy {
         } else {
             sun_zenith.clamp(0.0, core::f32::consts::FRAC_PI_2)
         };
-        let w = if water > 0.0 { water.min(10.0) } else { 0.0 };
+        let (dry, wettest) = PRECIPITABLE_WATER_RANGE_CM;
+        let w = if water > dry { water.min(wettest) } else { dry };
         let delta = condition.clamped_delta();
         let (cos_z, ln_delta) = (math::cos(z), math::ln(delta));
         let horizontal = |t: &EfficacyTable| {

@@ -508,20 +508,20 @@ pub(crate) fn controller_series<'py>(
     }
     let aod = Broadcast::new("aod", &aod, times.len())?;
     let defaults = Settings::default();
-    // sky-core takes any water (clamped to [0, 10] cm); a caller's value out of that range is
-    // an error here, as it is on the command line (`schedule --water-vapour`).
+    // sky-core counts water outside its range as the nearer end; a caller's value outside it
+    // is an error here, as it is on the command line (`schedule --water-vapour`).
+    let (dry, wettest) = sky_core::efficacy::PRECIPITABLE_WATER_RANGE_CM;
     let precipitable_water = match precipitable_water {
         None => defaults.precipitable_water,
-        Some(w) if (0.0..=10.0).contains(&w) => w,
+        Some(w) if (dry..=wettest).contains(&w) => w,
         Some(w) => {
             return Err(value_error(
                 "precipitable_water",
-                format!("{w} cm is outside [0, 10] cm"),
+                format!("{w} cm is outside [{dry}, {wettest}] cm"),
             ));
         }
     };
-    // The fields bound here; sky-core's defaults for the rest.
-    #[allow(clippy::needless_update)] // sky-core's settings grow
+    // Every field (a new one in sky-core is a compile error here, to be exposed or defaulted).
     let settings = Settings {
         aerosol_optical_depth: aod.at(0),
         ozone_du: ozone_du.unwrap_or(defaults.ozone_du),
@@ -530,7 +530,6 @@ pub(crate) fn controller_series<'py>(
         full_scale_lux,
         sun: time::algorithm(algorithm)?,
         decomposition: self::decomposition(decomposition)?,
-        ..defaults
     };
     let lamp = self::luminaire(luminaire)?;
     let readings = Readings::new(lux, ghi, dhi, times.len())?;

@@ -702,7 +702,7 @@ impl Layout {
                 };
                 let y = int(year, "Year", 1..=2999)?;
                 let day = int(doy, "DOY", 1..=366)?;
-                let t = int(hhmm, "the time (HHMM)", 0..=2359)?;
+                let t = hours_minutes(&fields, hhmm, 0..=2359, error)?;
                 let Some(g) = number(ghi, "the global irradiance")? else {
                     return Ok(None);
                 };
@@ -710,8 +710,7 @@ impl Layout {
                     Some(i) => number(i, "the diffuse irradiance")?,
                     None => None,
                 };
-                let unix = standard_time(y, day, t, offset_hours)
-                    .ok_or_else(|| error(format!("the time {t:04}: not HHMM")))?;
+                let unix = standard_time(y, day, t, offset_hours);
                 Ok(Some((unix, station_reading(g, d))))
             }
             Self::Surfrad => {
@@ -768,7 +767,7 @@ impl Layout {
                     })
                 };
                 let day = int(0, "the day of year", 1..=366)?;
-                let t = int(1, "the time (HHMM)", 1..=2400)?;
+                let t = hours_minutes(&fields, 1, 1..=2400, error)?;
                 let Some(g) = value(ghi, "the global irradiance")? else {
                     return Ok(None);
                 };
@@ -777,8 +776,7 @@ impl Layout {
                     None => None,
                 };
                 // Pacific Standard Time, 8 hours behind UTC; 2400 is the next day's 00:00.
-                let unix = standard_time(year, day, t, 8)
-                    .ok_or_else(|| error(format!("the time {t:04}: not HHMM")))?;
+                let unix = standard_time(year, day, t, 8);
                 Ok(Some((unix, station_reading(g, d))))
             }
         }
@@ -807,20 +805,30 @@ fn integer(
         })
 }
 
-/// The time `hhmm` (hours and minutes) of day `day` (1 = 1 January) of `year` in a standard
-/// time `offset_hours` behind UTC, as the stations' files give it; `None` unless the minutes
-/// are 0-59.
-fn standard_time(year: u32, day: u32, hhmm: u32, offset_hours: u32) -> Option<UnixTime> {
-    if hhmm % 100 > 59 {
-        return None;
+/// Field `i` of `fields` as a time of day HHMM in `range`, its minutes 0-59, or an error.
+fn hours_minutes(
+    fields: &[&str],
+    i: usize,
+    range: std::ops::RangeInclusive<u32>,
+    error: &dyn Fn(String) -> ParamError,
+) -> Result<u32, ParamError> {
+    let t = integer(fields, i, "the time (HHMM)", range, error)?;
+    if t % 100 > 59 {
+        return Err(error(format!("the time {t:04}: not HHMM")));
     }
-    let year = i32::try_from(year).ok()?;
-    let start = UnixTime::from_civil(year, 1, 1, 0, 0, 0.0).0;
-    Some(UnixTime(
+    Ok(t)
+}
+
+/// The time `hhmm` ([`hours_minutes`]) of day `day` (1 = 1 January) of `year` (1-2999, as the
+/// readers check) in a standard time `offset_hours` behind UTC, as the stations' files give it.
+fn standard_time(year: u32, day: u32, hhmm: u32, offset_hours: u32) -> UnixTime {
+    #[allow(clippy::cast_possible_wrap)] // years up to 2999
+    let start = UnixTime::from_civil(year as i32, 1, 1, 0, 0, 0.0).0;
+    UnixTime(
         start
             + f64::from(day.saturating_sub(1)) * 86_400.0
             + f64::from((hhmm / 100 + offset_hours) * 3600 + (hhmm % 100) * 60),
-    ))
+    )
 }
 
 /// The fields of one schedule row after its time ([`SCHEDULE_HEADER`]), each number by

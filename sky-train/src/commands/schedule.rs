@@ -173,10 +173,18 @@ fn turbidity(s: &str) -> Result<f32, String> {
     Ok(atm.aod_550 as f32)
 }
 
-/// Precipitable water, cm (sky-core's efficacy takes 0 to 10).
+/// Precipitable water, cm (what sky-core's efficacy takes,
+/// `efficacy::PRECIPITABLE_WATER_RANGE_CM`).
 #[allow(clippy::cast_possible_truncation)]
 fn water(s: &str) -> Result<f32, String> {
-    in_range(s, 0.0, 10.0, "a precipitable water in cm").map(|v| v as f32)
+    let (lo, hi) = sky_core::efficacy::PRECIPITABLE_WATER_RANGE_CM;
+    in_range(
+        s,
+        f64::from(lo),
+        f64::from(hi),
+        "a precipitable water in cm",
+    )
+    .map(|v| v as f32)
 }
 
 /// A site's elevation the clear sky takes (sky-core's `daylight::ELEVATION_RANGE_M`).
