@@ -93,6 +93,25 @@ dev_profile=(--config 'profile.dev.debug="line-tables-only"'
   --config 'profile.dev.package.sky-core.opt-level=0'
   --config 'profile.dev.package.sky-train.opt-level=0')
 
+# The dry run verifies each crate against the others through a local registry. Cargo trusts a
+# registry's crate never to change: it extracts it into $CARGO_HOME/registry/src/-<hash>/ once,
+# and keeps what it built from it by version alone. So a later dry run from the same checkout
+# would build the earlier sources of sky-core and sky-gpu instead of this one's: their
+# extractions go first, and so do the units the last dry run built from them (recorded in
+# target/debug/.publish-dry-run-units).
+publish_dry_run() {
+  local src="${CARGO_HOME:-$HOME/.cargo}/registry/src" fingerprints=target/debug/.fingerprint
+  local record=target/debug/.publish-dry-run-units before
+  rm -rf "$src"/-*/sky-core-* "$src"/-*/sky-gpu-* "$src"/-*/sky-train-*
+  if [ -f "$record" ]; then
+    while read -r unit; do rm -rf "${fingerprints:?}/$unit"; done <"$record"
+  fi
+  before=$(ls "$fingerprints")
+  cargo publish --workspace --dry-run --locked --allow-dirty "${dev_profile[@]}"
+  comm -13 <(sort <<<"$before") <(ls "$fingerprints" | sort) | grep -E '^sky-(core|gpu|train)-' \
+    >"$record" || true
+}
+
 examples() {
   for example in preetham controller; do
     cargo run --locked -q -p sky-core --example "$example" >/dev/null
@@ -159,7 +178,7 @@ step host "sky-core's micromath feature: each model's error against its f64 refe
   --config 'profile.dev.package.sky-train.opt-level=0'
 step host "sky-core's examples run" examples
 step host "cargo publish --dry-run: sky-core, sky-gpu and sky-train package and build from their packaged sources" \
-  cargo publish --workspace --dry-run --locked --allow-dirty "${dev_profile[@]}"
+  publish_dry_run
 
 printf '\n==> the host lane passed at %d s; waiting for the other lane (setup, cross, wasm, fuzz, python, doc blocks)\n' \
   "$(($(date +%s) - start))"
