@@ -196,14 +196,19 @@ pub struct Step {
 }
 
 /// The clear sky's global horizontal illuminance for `sun` (XYZ, Y in lux) under an atmosphere
-/// of aerosol optical depth `aod` at sea level with the default ozone ([`Daylight::new`]). The
-/// controller's own clear-sky level is at its site: [`Daylight::with_atmosphere`] with
-/// [`clear_atmosphere`], whose global illuminance the clear-sky index is measured over.
+/// of aerosol optical depth `aod` at sea level with the default ozone, the sun's beam refracted
+/// ([`Daylight::refracted`]). The controller's own clear-sky level is at its site:
+/// [`Daylight::refracted`] with [`clear_atmosphere`], whose global illuminance the clear-sky
+/// index is measured over.
 ///
 /// # Errors
 /// [`SkyError::OutOfRange`] for `aod` outside [[`daylight::MIN_AOD`], [`daylight::MAX_AOD`]].
 pub fn clear_sky_illuminance(sun: &SunPosition, aod: f32) -> Result<Vec3, SkyError> {
-    Ok(Daylight::new(sun.sun(), aod)?.global())
+    let atmosphere = ClearAtmosphere {
+        aerosol_optical_depth: aod,
+        ..ClearAtmosphere::default()
+    };
+    Ok(Daylight::refracted(sun, &atmosphere)?.global())
 }
 
 /// The controller's clear atmosphere at `site`: the settings' aerosol optical depth and ozone
@@ -606,8 +611,8 @@ fn step_at(
             max: f32::MAX,
         });
     }
-    let daylight = Daylight::with_atmosphere(sun.sun(), &clear_atmosphere(site, settings))?
-        .on_day(time.day_of_year());
+    let daylight =
+        Daylight::refracted(&sun, &clear_atmosphere(site, settings))?.on_day(time.day_of_year());
     let clear = daylight.global() * clear_scale;
     let (followed, followed_melanopic) = match settings.light {
         Light::Global => (clear, daylight.melanopic_edi() * clear_scale),

@@ -255,7 +255,8 @@ impl Site {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SunPosition {
     zenith: f64,
-    apparent_zenith: f64,
+    /// zenith − apparent zenith, radians in f32 (what the daylight's beam takes).
+    refraction: f32,
     azimuth: f64,
     sun: Sun,
 }
@@ -315,18 +316,21 @@ impl SunPosition {
             (zenith as f32).to_radians(),
             (compass_to_azimuth(azimuth) as f32).to_radians(),
         )?;
+        #[allow(clippy::cast_possible_truncation)] // under a degree, to f32 radians
+        let refraction = (zenith - apparent_zenith).to_radians() as f32;
         Ok(Self {
             zenith,
-            apparent_zenith,
+            refraction,
             azimuth,
             sun,
         })
     }
 
-    /// The position of geometric and apparent zenith `zenith`, `apparent_zenith` in `[0, π]`
-    /// and compass azimuth `azimuth` in `[0, 2π]` (2π read as 0), radians in f32 (the fast
-    /// path, [`grena`]): the [`Sun`] is computed in f32 from them, the degrees widened to f64.
-    fn from_radians_f32(zenith: f32, apparent_zenith: f32, azimuth: f32) -> Result<Self, SkyError> {
+    /// The position of geometric zenith `zenith` in `[0, π]`, refraction `refraction` (the
+    /// zenith less the apparent one) and compass azimuth `azimuth` in `[0, 2π]` (2π read as 0),
+    /// radians in f32 (the fast path, [`grena`]): the [`Sun`] is computed in f32 from them, the
+    /// degrees widened to f64.
+    fn from_radians_f32(zenith: f32, refraction: f32, azimuth: f32) -> Result<Self, SkyError> {
         let azimuth_deg = azimuth.to_degrees();
         let azimuth_deg = if azimuth_deg >= 360.0 {
             0.0
@@ -342,7 +346,7 @@ impl SunPosition {
         };
         Ok(Self {
             zenith: f64::from(zenith.to_degrees()),
-            apparent_zenith: f64::from(apparent_zenith.to_degrees()),
+            refraction,
             azimuth: f64::from(azimuth_deg),
             sun: Sun::new(zenith, phi)?,
         })
@@ -354,10 +358,23 @@ impl SunPosition {
         self.zenith
     }
 
-    /// The refraction-corrected (apparent) zenith angle in degrees, for 1013.25 hPa and 15 °C.
+    /// The refraction-corrected (apparent) zenith angle in degrees, for 1013.25 hPa and 15 °C:
+    /// [`Self::zenith_deg`] less [`Self::refraction`] (kept in f32 radians: SPA's refraction
+    /// within 1e-7°).
     #[must_use]
     pub fn apparent_zenith_deg(&self) -> f64 {
-        self.apparent_zenith
+        self.zenith - f64::from(self.refraction).to_degrees()
+    }
+
+    /// The atmospheric refraction of the sun's position, radians: the geometric zenith angle
+    /// less the apparent one ([`Self::apparent_zenith_deg`]), by Sæmundsson's formula for
+    /// 1013.25 hPa and 15 °C as SPA writes it (Reda & Andreas 2004, eq. 42): at most 0.62°
+    /// (at −0.83°), 0.48° at the horizon, a hair below 0 with the sun overhead; 0 with the sun
+    /// below −0.83°. [`Daylight::refracted`](crate::daylight::Daylight::refracted) raises the
+    /// beam by it.
+    #[must_use]
+    pub fn refraction(&self) -> f32 {
+        self.refraction
     }
 
     /// The geometric elevation above the horizon in degrees, 90 − zenith.

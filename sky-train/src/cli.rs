@@ -71,7 +71,8 @@ pub enum Command {
     /// of an outdoor sensor (its columns under --measurements).
     ///
     /// Columns: utc (RFC 3339); sun_zenith_deg: the topocentric GEOMETRIC zenith angle (no
-    /// refraction; the sky models use it); sun_azimuth_deg: from north, clockwise, east = 90;
+    /// refraction; the sky's light is computed for it, the sun's beam for the apparent one);
+    /// sun_azimuth_deg: from north, clockwise, east = 90;
     /// sun_elevation_deg = 90 - zenith; apparent_zenith_deg: refraction-corrected for 1013.25 hPa
     /// and 15 C; cct_k and duv (CIE 1960 uv distance from the Planckian locus, positive above
     /// it as in ANSI C78.377; empty where |Duv| > 0.05) of the light followed; horizontal_lux:

@@ -62,7 +62,7 @@ fn cloud_factor(t: f64) -> f64 {
 fn lux_reading(time: &UtcTime, t: f64) -> f32 {
     let sun = settings().sun.position(time, &vienna()).expect("sun");
     let atmosphere = clear_atmosphere(&vienna(), &settings());
-    let clear = Daylight::with_atmosphere(sun.sun(), &atmosphere)
+    let clear = Daylight::refracted(&sun, &atmosphere)
         .expect("clear")
         .on_day(time.day_of_year())
         .global()

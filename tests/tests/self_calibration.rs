@@ -356,8 +356,9 @@ fn degraded_sensors_stay_bounded_and_are_flagged() {
         let level = c.level_unbounded().unwrap_or(f32::NAN); // NaN: nothing learned
         let (_, med, p5, p95) = figures(r, converged(r).map_or(r.days.len(), |d| d + 1));
         println!(
-            "sensor | {name} | level {level:.3} ({:+.1} % of the clean sensor's) | factor at 40° {:.3} | {} | later clear-sky index median {med:.3}, 5-95 % {p5:.3}-{p95:.3}",
+            "sensor | {name} | level {level:.3} ({:+.1} % of the clean sensor's) | {} clear days | factor at 40° {:.3} | {} | later clear-sky index median {med:.3}, 5-95 % {p5:.3}-{p95:.3}",
             100.0 * (level / base - 1.0),
+            c.clear_days(),
             c.factor(40.0),
             c.status().name()
         );
@@ -369,12 +370,30 @@ fn degraded_sensors_stay_bounded_and_are_flagged() {
     // Soiling after commissioning: followed, and flagged as drift.
     assert!((level(&dirty) / base - 0.9).abs() < 0.02);
     assert_eq!(dirty.calibration.status(), Status::Drifted);
-    // +25 % or −40 % from the start: the detector finds no clear period that far from the
-    // site's clear sky before a level is learned (the mean and maximum criteria), so nothing is
-    // learned: the factor stays 1, not chased, but the status stays `learning` (not flagged).
-    for r in [&high, &high_narrow, &low] {
-        assert_eq!(r.calibration.level_unbounded(), None);
-        assert_eq!(r.calibration.factor(40.0), 1.0);
-        assert_eq!(r.calibration.status(), Status::Learning);
+    // +25 % or −40 % from the start: never called calibrated, never chased. Whether the
+    // detector finds a clear period that far from the site's clear sky (its mean and maximum
+    // criteria, 75 and 65 W/m², are absolute: met with the sun low) decides which of two
+    // outcomes it is: nothing learned (the factor stays 1, the status `learning`), or a level
+    // learned beyond the bounds, the factor held within them and flagged `sensor-suspect`.
+    for (r, bounds) in [
+        (&high, Bounds::DEFAULT),
+        (&high_narrow, narrow),
+        (&low, Bounds::DEFAULT),
+    ] {
+        let c = &r.calibration;
+        match c.level_unbounded() {
+            None => {
+                assert_eq!(c.factor(40.0), 1.0);
+                assert_eq!(c.status(), Status::Learning);
+            }
+            Some(level) => {
+                assert!(!(bounds.min..=bounds.max).contains(&level), "level {level}");
+                assert_eq!(c.status(), Status::SensorSuspect);
+                for h in [10.0, 40.0, 80.0] {
+                    let k = c.factor(h);
+                    assert!((bounds.min..=bounds.max).contains(&k), "factor {k} at {h}°");
+                }
+            }
+        }
     }
 }

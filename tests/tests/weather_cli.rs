@@ -365,11 +365,14 @@ fn schedule_measurements_at_the_clear_sky_level_give_the_clear_sky_rows() {
                 .expect("time");
         let site = sky_core::solar::Site::new(48.21, 16.37, 0.0).expect("site");
         let sun = sky_core::solar::SunPosition::new(&time, &site).expect("sun");
-        let e = sky_core::daylight::Daylight::new(sun.sun(), sky_core::daylight::DEFAULT_AOD)
-            .expect("clear")
-            .on_day(time.day_of_year())
-            .global()
-            .y;
+        let e = sky_core::daylight::Daylight::refracted(
+            &sun,
+            &sky_core::daylight::ClearAtmosphere::default(),
+        )
+        .expect("clear")
+        .on_day(time.day_of_year())
+        .global()
+        .y;
         writeln!(f, "{},{e:e}", r[0]).expect("write");
     }
     drop(f);

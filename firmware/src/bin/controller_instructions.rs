@@ -13,7 +13,7 @@
 //! For each of the controller example's 144 steps (`src/bin/controller.rs`, the same site,
 //! date and configuration), this counts `sky_core::controller::step` as a whole and its parts
 //! called one by one as `step` calls them: the sun's position (the fast one, Grena 2012), the sky's constructor
-//! (`daylight::Daylight::with_atmosphere` at the site's elevation: the diffuse tables and the direct beam's 47 spectral bins), the
+//! (`daylight::Daylight::refracted` at the site's elevation: the diffuse tables and the direct beam's 47 spectral bins), the
 //! day's Earth-Sun distance (`Daylight::on_day`: the day of the year and Spencer's series), the
 //! global light (their sum), chromaticity and CCT (`cct_duv`) and the LED drive levels; the parts' results must equal
 //! the whole step's bit for bit. It prints the minimum, median and maximum over the day of
@@ -98,7 +98,7 @@ fn run(counts: &mut [Counts; 9], per_instruction: f64, empty: u64) -> Result<boo
         let (t_sun, sun) = measure(|| grena::sun_position(&time, &site));
         let sun = sun?;
         let atmosphere = clear_atmosphere(&site, &settings);
-        let (t_sky, sky) = measure(|| Daylight::with_atmosphere(sun.sun(), &atmosphere));
+        let (t_sky, sky) = measure(|| Daylight::refracted(&sun, &atmosphere));
         let sky = sky?;
         let (t_day, sky) = measure(|| sky.on_day(time.day_of_year()));
         let (t_lux, illuminance) = measure(|| sky.global());
@@ -145,7 +145,7 @@ fn main() -> ! {
     let mut counts = [
         part("controller::step"),
         part("  sun position (Grena 2012)"),
-        part("  daylight (Daylight::with_atmosphere)"),
+        part("  daylight (Daylight::refracted)"),
         part("  Earth-Sun distance (Daylight::on_day)"),
         part("  global light (Daylight::global)"),
         part("  chromaticity and CCT (cct_duv)"),

@@ -192,8 +192,8 @@ fn degrees_to_fixed(degrees: f64) -> u32 {
 
 /// The sun's position at `time` seen from `site` by Grena's algorithm 5: the geometric
 /// topocentric zenith (Grena's parallax term, the site's elevation neglected), the compass
-/// azimuth, and the zenith refracted by Grena's formula for 1013.25 hPa and 15 °C (no refraction
-/// with the sun below the horizon). TT − UT (ΔT) is the estimate [`SunPosition::new`] uses.
+/// azimuth, and the zenith refracted by Grena's formula for 1013.25 hPa and 15 °C (as SPA: from a
+/// geometric elevation of −0.83° up, none below). TT − UT (ΔT) is the estimate [`SunPosition::new`] uses.
 /// Error bounds: within 0.01° of pvlib's NREL SPA (zenith, azimuth × sin zenith) over
 /// 2000-2100 at latitudes ±80°; see the module docs.
 ///
@@ -274,7 +274,9 @@ pub fn sun_position(time: &UtcTime, site: &Site) -> Result<SunPosition, SkyError
     let zenith = (libm::atan2f(horizontal, up) + 4.26e-5 * horizontal).min(PI);
     let gamma = libm::atan2f(y, -north);
     let elevation = FRAC_PI_2 - zenith;
-    let refraction = if elevation > 0.0 {
+    // From the elevation where SPA starts refracting too (its −0.26667° sun radius and
+    // −0.5667° refraction at the horizon), so the apparent sun is the same by both algorithms.
+    let refraction = if elevation > -0.014_545 {
         // 1 atm, 15 °C: 0.08422 P / ((273 + T) tan(e + 0.003138 / (e + 0.08919)))
         let (s, c) = sincos(radians_to_fixed(
             elevation + 0.003138 / (elevation + 0.08919),
@@ -283,7 +285,7 @@ pub fn sun_position(time: &UtcTime, site: &Site) -> Result<SunPosition, SkyError
     } else {
         0.0
     };
-    SunPosition::from_radians_f32(zenith, zenith - refraction, gamma + PI)
+    SunPosition::from_radians_f32(zenith, refraction, gamma + PI)
 }
 
 #[cfg(test)]
