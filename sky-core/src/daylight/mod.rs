@@ -267,14 +267,19 @@ impl Daylight {
     fn of(sun: Sun, refraction: f32, atmosphere: ClearAtmosphere) -> Self {
         let elevation = core::f32::consts::FRAC_PI_2 - sun.zenith();
         let pressure = atmosphere.pressure_ratio();
-        let beam_elevation = elevation + refraction * pressure;
+        // Without refraction every value is the geometric sun's, bit for bit.
+        let beam_zenith = sun.zenith() - refraction * pressure;
         Self {
             sun,
-            beam_zenith: core::f32::consts::FRAC_PI_2 - beam_elevation,
+            beam_zenith,
             atmosphere,
-            sin_elevation: math::at_least(math::sin(beam_elevation), 0.0),
+            sin_elevation: math::at_least(math::cos(beam_zenith), 0.0),
             diffuse: diffuse(elevation.to_degrees(), pressure, &atmosphere),
-            direct_normal: direct_normal(beam_elevation, pressure, &atmosphere),
+            direct_normal: direct_normal(
+                core::f32::consts::FRAC_PI_2 - beam_zenith,
+                pressure,
+                &atmosphere,
+            ),
         }
     }
 
