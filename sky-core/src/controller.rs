@@ -3,7 +3,8 @@
 //! global light of sun and sky, or the sky alone: [`Light`]), and the drive levels of an RGBW
 //! luminaire that reproduce that chromaticity.
 //!
-//! Without a measurement the light is the clear-sky daylight of [`crate::daylight`]. With one (an
+//! Without a measurement the light is the clear-sky daylight of [`crate::daylight`], its sun's
+//! beam from the sun's refracted position ([`Daylight::refracted`]). With one (an
 //! outdoor lux sensor, a pyranometer, or a pyranometer pair giving the diffuse too; see
 //! [`Measurement`], [`crate::measurement`]) the illuminance is the measured global one and its colour is that of daylight
 //! under cloud ([`crate::overcast`]), from the clear-sky index (measured over clear-sky global
