@@ -445,8 +445,11 @@ impl Daylight {
     /// sines and cosines).
     fn beam_direction(&self) -> Vec3 {
         let d = self.sun.direction();
+        if self.beam_zenith == self.sun.zenith() {
+            return d; // the geometric sun's daylight: nothing more to compute
+        }
         let across = math::sqrt(d.x * d.x + d.y * d.y);
-        if self.beam_zenith == self.sun.zenith() || across <= 0.0 {
+        if across <= 0.0 {
             return d;
         }
         let c = math::cos(self.beam_zenith);

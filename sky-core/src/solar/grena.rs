@@ -192,8 +192,9 @@ fn degrees_to_fixed(degrees: f64) -> u32 {
 
 /// The sun's position at `time` seen from `site` by Grena's algorithm 5: the geometric
 /// topocentric zenith (Grena's parallax term, the site's elevation neglected), the compass
-/// azimuth, and the zenith refracted by Grena's formula for 1013.25 hPa and 15 °C (as SPA: from a
-/// geometric elevation of −0.83° up, none below). TT − UT (ΔT) is the estimate [`SunPosition::new`] uses.
+/// azimuth, and the zenith refracted by Grena's formula for 1013.25 hPa and 15 °C (as SPA: from
+/// a geometric elevation of −0.83° up, none below). TT − UT (ΔT) is the estimate
+/// [`SunPosition::new`] uses.
 /// Error bounds: within 0.01° of pvlib's NREL SPA (zenith, azimuth × sin zenith) over
 /// 2000-2100 at latitudes ±80°; see the module docs.
 ///
