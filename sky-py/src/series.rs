@@ -9,7 +9,7 @@ use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use sky_core::controller::{self, Decomposition, Light, Measurement, Settings, Step};
-use sky_core::daylight::Daylight;
+use sky_core::daylight::{ClearAtmosphere, Daylight};
 use sky_core::led::{Channel, Luminaire};
 use sky_core::solar::SunAlgorithm;
 use sky_core::{SkyError, Sun};
@@ -215,9 +215,11 @@ fn daylight_row(day: &Daylight) -> [f64; 9] {
 }
 
 /// The clear-sky daylight at each of `times` (microseconds since 1970 UTC) at a site: the
-/// Python package's `daylight`.
+/// Python package's `daylight`. The controller's clear sky there ([`Daylight::refracted`] with
+/// [`controller::clear_atmosphere`]): the site's surface pressure, the ozone column, the sun's
+/// beam refracted.
 #[pyfunction]
-#[pyo3(signature = (latitude, longitude, times, aod, elevation, algorithm, scalar))]
+#[pyo3(signature = (latitude, longitude, times, aod, elevation, ozone_du, algorithm, scalar))]
 #[allow(clippy::too_many_arguments)] // the Python signature's keywords
 pub(crate) fn daylight_series<'py>(
     py: Python<'py>,
@@ -226,17 +228,34 @@ pub(crate) fn daylight_series<'py>(
     times: PyReadonlyArray1<'py, i64>,
     aod: PyReadonlyArray1<'py, f32>,
     elevation: f64,
+    ozone_du: Option<f32>,
     algorithm: &str,
     scalar: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let site = time::site(latitude, longitude, elevation)?;
     let algorithm = time::algorithm(algorithm)?;
+    let settings = Settings {
+        ozone_du: ozone_du.unwrap_or(Settings::default().ozone_du),
+        ..Settings::default()
+    };
+    // The site's atmosphere (its elevation and ozone) is checked once, before any time.
+    let site_atmosphere = controller::clear_atmosphere(&site, &settings);
+    site_atmosphere.validate().map_err(|e| match e {
+        SkyError::OutOfRange { parameter, .. } if parameter.starts_with("ozone") => {
+            value_error("ozone_du", e)
+        }
+        _ => value_error("", e),
+    })?;
     let times = elements(&times)?;
     let aod = Broadcast::new("aod", &aod, times.len())?;
     series(py, DAYLIGHT, &times, |i, &t| {
         let sun = time::sun_at(algorithm, t, &site, i, scalar)?;
         let day_of_year = time::utc_time(t, i, scalar)?.day_of_year();
-        let day = Daylight::new(sun.sun(), aod.at(i))
+        let atmosphere = ClearAtmosphere {
+            aerosol_optical_depth: aod.at(i),
+            ..site_atmosphere
+        };
+        let day = Daylight::refracted(&sun, &atmosphere)
             .map_err(|e| value_error(&aod.element(i), e))?
             .on_day(day_of_year);
         Ok(daylight_row(&day))
@@ -558,6 +577,11 @@ pub(crate) fn controller_series<'py>(
                 }
                 SkyError::OutOfRange { parameter, .. } if parameter.starts_with("full-scale") => {
                     "full_scale_lux".to_owned()
+                }
+                SkyError::OutOfRange { parameter, .. }
+                    if parameter.starts_with("site elevation") =>
+                {
+                    "elevation".to_owned()
                 }
                 SkyError::OutOfRange { parameter, .. } if parameter.starts_with("year") => {
                     let hint = if settings.sun == SunAlgorithm::Fast {

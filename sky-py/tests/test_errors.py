@@ -41,6 +41,18 @@ def test_sites_and_times(function):
     raises(lambda: function(*VIENNA, "yesterday"), error=ValueError)
 
 
+def test_site_atmosphere():
+    """The daylight's and the controller's clear atmosphere: the site's elevation (its
+    pressure) and the ozone column, each named with its range."""
+    for function in [skymodels.daylight, skymodels.controller_step]:
+        raises(lambda: function(*VIENNA, NOON, elevation=6000.0),
+               "site elevation [m] = 6000", "[-500, 5000]")
+        raises(lambda: function(*VIENNA, NOON, ozone_du=100.0), "ozone_du",
+               "ozone column [DU] = 100", "[200, 500]")
+    # The sun alone has no atmosphere: a site up to 10 km.
+    assert skymodels.sun_position(*VIENNA, NOON, elevation=6000.0)["elevation"] > 0
+
+
 def test_aerosol_optical_depth():
     raises(lambda: skymodels.daylight(*VIENNA, NOON, 0.9), "aod: aerosol optical depth = 0.9",
            "[0.05, 0.8]")

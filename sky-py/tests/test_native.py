@@ -56,16 +56,25 @@ def test_daylight_and_sun_position_equal_sky_core(native, algorithm):
     for k, (lat, lon, elevation) in enumerate(SITES):
         micros, rng = instants(100 * k + len(algorithm), algorithm)
         aod = f32_values(rng, skymodels.MIN_AOD, skymodels.MAX_AOD, N)
+        # Every other site its own ozone column; the others the default.
+        ozone = None if k % 2 == 0 else 230.0 + 50.0 * k
         site = {"latitude": lat, "longitude": lon, "elevation": elevation, "algorithm": algorithm}
         cases = [
-            {"kind": "daylight", "time": fields(t), "aod": a, **site} for t, a in zip(micros, aod)
+            {"kind": "daylight", "time": fields(t), "aod": a, "ozone_du": ozone, **site}
+            for t, a in zip(micros, aod)
         ]
         suns = [{**c, "kind": "sun"} for c in cases]
         want, want_sun = native(cases), native(suns)
         assert not any("error" in r for r in want + want_sun), want[:3]
 
         got = skymodels.daylight(
-            lat, lon, as_times(micros), np.float32(aod), elevation=elevation, algorithm=algorithm
+            lat,
+            lon,
+            as_times(micros),
+            np.float32(aod),
+            elevation=elevation,
+            ozone_du=ozone,
+            algorithm=algorithm,
         )
         for key in DAYLIGHT_KEYS:
             assert_same32(got[key], want, key)
@@ -78,6 +87,26 @@ def test_daylight_and_sun_position_equal_sky_core(native, algorithm):
             assert np.array_equal(sun[key].view(np.uint64), expected), key
         for key in ["sun_zenith", "sun_azimuth"]:
             assert_same32(sun[key], want_sun, key)
+
+
+def test_daylight_is_the_controllers_clear_sky():
+    """Without a measurement the controller follows the clear sky at its site (sky-core's
+    controller::step): `daylight` at the same site, time, aerosol and ozone is that light,
+    at every site of SITES (up to 2,850 m: the pressure and the refraction differ there)."""
+    for k, (lat, lon, elevation) in enumerate(SITES):
+        micros, rng = instants(500 + k, "fast")
+        aod = f32_values(rng, skymodels.MIN_AOD, skymodels.MAX_AOD, N)
+        ozone = 260.0 + 30.0 * k
+        times = as_times(micros)
+        day = skymodels.daylight(
+            lat, lon, times, np.float32(aod), elevation=elevation, ozone_du=ozone
+        )
+        step = skymodels.controller_step(
+            lat, lon, times, aod=np.float32(aod), elevation=elevation, ozone_du=ozone,
+            full_scale_lux=1e9,
+        )
+        assert np.array_equal(day["global_illuminance"], step["illuminance"]), (lat, lon)
+        assert np.array_equal(day["melanopic_edi"], step["melanopic_edi"]), (lat, lon)
 
 
 def test_daylight_at_sun_equals_sky_core(native):
@@ -466,6 +495,10 @@ def test_refusals_carry_sky_core_messages(native):
          lambda: skymodels.daylight(90.5, 16.37, "2026-06-21T11:00", elevation=190.0)),
         ({"kind": "daylight", **base, "elevation": -600.0, "aod": 0.1},
          lambda: skymodels.daylight(48.21, 16.37, "2026-06-21T11:00", elevation=-600.0)),
+        ({"kind": "daylight", **base, "elevation": 6000.0, "aod": 0.1},
+         lambda: skymodels.daylight(48.21, 16.37, "2026-06-21T11:00", 0.1, elevation=6000.0)),
+        ({"kind": "daylight", **base, "ozone_du": 600.0, "aod": 0.1},
+         lambda: skymodels.daylight(48.21, 16.37, "2026-06-21T11:00", 0.1, ozone_du=600.0)),
         ({"kind": "sun", **base, "time": [2111, 1, 1, 0, 0, 0.0]},
          lambda: skymodels.sun_position(48.21, 16.37, "2111-01-01", elevation=190.0)),
         ({"kind": "sky", "model": "preetham", "sun_zenith": 0.3, "sun_azimuth": 0.0,

@@ -16,7 +16,7 @@ use std::fmt::Write as _;
 
 use sky_core::aoas::{AoasSky, DayCycle, Preset, Scattering};
 use sky_core::controller::Settings;
-use sky_core::daylight::Daylight;
+use sky_core::daylight::{self, ClearAtmosphere, Daylight};
 use sky_core::neural::{NeuralWeights, pretrained};
 use sky_core::sh::ShSky;
 use sky_core::solar::{Site, UtcTime};
@@ -143,7 +143,14 @@ fn daylight_day(
             t - f64::from(hour * 3600 + minute * 60),
         )?;
         let position = sun.position(&time, &site)?;
-        let light = Daylight::new(position.sun(), aod)?.on_day(time.day_of_year());
+        // The controller's clear sky at the site: its pressure, the default ozone, the
+        // sun's beam refracted.
+        let atmosphere = ClearAtmosphere {
+            aerosol_optical_depth: aod,
+            elevation_m: elevation as f32,
+            ozone_du: daylight::OZONE_DU,
+        };
+        let light = Daylight::refracted(&position, &atmosphere)?.on_day(time.day_of_year());
         let (x, y) = light.chromaticity();
         let row = [
             t,
@@ -299,7 +306,8 @@ fn main() -> anyhow::Result<()> {
     }
     json.push_str("],\"daylight\":[");
     // Vienna at midsummer, Longyearbyen in the polar night (twilight only), Singapore at the
-    // equinox from 1:00 UTC in steps of 333.5 s under a hazy sky.
+    // equinox from 1:00 UTC in steps of 333.5 s under a hazy sky, Alamosa (2,317 m: its
+    // pressure and refraction) on a clean winter day.
     let days = [
         (
             (2026, 6, 21),
@@ -318,6 +326,12 @@ fn main() -> anyhow::Result<()> {
             (3_600.0, 40_000.0, 333.5),
             (1.35, 103.82, 15.0),
             0.8,
+        ),
+        (
+            (2016, 1, 1),
+            (0.0, 86_399.0, 300.0),
+            (37.70, -105.92, 2317.0),
+            0.05,
         ),
     ];
     for (i, (date, times, site, aod)) in days.into_iter().enumerate() {

@@ -8,7 +8,7 @@ use sky_core::daylight;
 #[cfg(feature = "daylight-day")]
 use sky_core::{
     SkyError,
-    controller::Settings,
+    controller::{self, Settings},
     daylight::Daylight,
     solar::{Site, UtcTime},
 };
@@ -74,10 +74,12 @@ impl DaylightDay {
     /// (both in [0, 86399], `end` ≥ `start`; `end` is a sample when the steps reach it) every
     /// `step` seconds ([1, 86400]), at `latitude` (degrees, −90 to 90, north positive),
     /// `longitude` (degrees, −180 to 180, east positive) and `elevation` (metres, −500 to
-    /// 10 000), under a clear atmosphere of aerosol optical depth `aod` at 550 nm
-    /// ([`daylight_min_aod`] to [`daylight_max_aod`]), on the date's Earth-Sun distance
-    /// (`Daylight::on_day`, as the controller's clear sky). The sun is the controller's default
-    /// (Grena 2012: the years 2000-2110).
+    /// 5 000), under a clear atmosphere of aerosol optical depth `aod` at 550 nm
+    /// ([`daylight_min_aod`] to [`daylight_max_aod`]) at the site's surface pressure, with the
+    /// default ozone column: the controller's clear sky at that site (`Daylight::refracted`
+    /// with `controller::clear_atmosphere`, the sun's beam from its refracted position, on
+    /// the date's Earth-Sun distance). The sun is the controller's default (Grena 2012: the
+    /// years 2000-2110).
     ///
     /// # Errors
     /// A parameter outside its range, named with the range in the message.
@@ -98,14 +100,20 @@ impl DaylightDay {
         let end = check("end [s after 0:00 UTC]", end, start, LAST_SECOND).map_err(js_error)?;
         let step = check("step [s]", step, MIN_STEP_SECONDS, DAY_SECONDS).map_err(js_error)?;
         let site = Site::new(latitude, longitude, elevation).map_err(js_error)?;
-        let sun = Settings::default().sun;
+        let settings = Settings {
+            aerosol_optical_depth: aod,
+            ..Settings::default()
+        };
+        let atmosphere = controller::clear_atmosphere(&site, &settings);
+        atmosphere.validate().map_err(js_error)?;
+        let sun = settings.sun;
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         let samples = ((end - start) / step) as usize + 1;
         let mut out = Self {
             times: Vec::with_capacity(samples),
             columns: core::array::from_fn(|_| Vec::with_capacity(samples)),
         };
-        // The first sample checks the date, the sun algorithm's years and the atmosphere.
+        // The first sample checks the date and the sun algorithm's years.
         for k in 0..samples {
             #[allow(clippy::cast_precision_loss)]
             let t = start + k as f64 * step;
@@ -114,7 +122,7 @@ impl DaylightDay {
             let second = t - f64::from(hour * 3600 + minute * 60);
             let time = UtcTime::new(year, month, day, hour, minute, second).map_err(js_error)?;
             let position = sun.position(&time, &site).map_err(js_error)?;
-            let light = Daylight::new(position.sun(), aod)
+            let light = Daylight::refracted(&position, &atmosphere)
                 .map_err(js_error)?
                 .on_day(time.day_of_year());
             let (x, y) = light.chromaticity();

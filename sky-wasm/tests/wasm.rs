@@ -10,8 +10,9 @@
 //! * errors: sky-core's errors become `JsError`s (JavaScript `Error`s) carrying sky-core's
 //!   message, and so do sky-wasm's own (unknown names, an output array of the wrong length);
 //! * images: the 8-bit renderings are not blank and respond to exposure and to the sun;
-//! * daylight: `DaylightDay` gives native sky-core's daylight series, and refuses bad input with
-//!   a message naming the parameter and its range;
+//! * daylight: `DaylightDay` gives native sky-core's daylight series at the site (its pressure,
+//!   the refracted beam), and refuses bad input with a message naming the parameter and its
+//!   range;
 //! * numbers: the error messages' numbers, written without `core::fmt`, are Rust's `Display`
 //!   text of the same `f32`s.
 //!
@@ -491,7 +492,7 @@ fn daylight_day(
 #[wasm_bindgen_test]
 fn daylight_days_match_native() {
     let native = native();
-    assert!(native.daylight.len() >= 3);
+    assert!(native.daylight.len() >= 4);
     for want in &native.daylight {
         let got = ok(daylight_day(want.args));
         assert_eq!(got.times(), want.times, "{:?}: times", want.args);
@@ -590,6 +591,10 @@ fn daylight_bad_input_names_the_parameter_and_its_range() {
         (
             (2026, 6, 21, 0.0, 100.0, 0.0, 48.21, 16.37, 190.0, 0.43),
             "step [s] = 0 is outside the valid range [1, 86400]",
+        ),
+        (
+            (2026, 6, 21, 0.0, 100.0, 10.0, 48.21, 16.37, 6000.0, 0.43),
+            "site elevation [m] = 6000 is outside the valid range [-500, 5000]",
         ),
         (
             (2026, 6, 21, 0.0, 100.0, f64::NAN, 48.21, 16.37, 190.0, 0.43),

@@ -127,8 +127,11 @@ def _shaped(columns, shape, scalar):
     return out
 
 
-def daylight(latitude, longitude, times, aod=None, *, elevation=0.0, algorithm="fast"):
-    """The clear-sky daylight at a place at each of ``times``.
+def daylight(
+    latitude, longitude, times, aod=None, *, elevation=0.0, ozone_du=None, algorithm="fast"
+):
+    """The clear-sky daylight at a place at each of ``times``: the light a sensor there sees
+    under a clear sky, and the light ``controller_step`` follows without a measurement.
 
     Parameters
     ----------
@@ -141,7 +144,12 @@ def daylight(latitude, longitude, times, aod=None, *, elevation=0.0, algorithm="
         (A later release will take None as the site's monthly climatology; pass a number to
         keep today's behaviour.)
     elevation : float, keyword
-        The site's height above sea level, metres, -500 to 10000 (the sun's parallax).
+        The site's height above sea level, metres, -500 to 5000: its surface pressure (US
+        Standard Atmosphere 1976), which thins the air's share of the light and the
+        refraction of the sun's beam, and the sun's parallax.
+    ozone_du : float, optional, keyword
+        The total ozone column, Dobson units, 200 to 500 (it matters in twilight); None:
+        ``OZONE_DU``. ``sky-train site`` prints a site's month.
     algorithm : {"fast", "spa"}, keyword
         The sun's position: "fast" (Grena 2012, the years 2000-2110, within 0.003 degrees of
         SPA) or "spa" (NREL SPA, the years 1-2999).
@@ -149,7 +157,10 @@ def daylight(latitude, longitude, times, aod=None, *, elevation=0.0, algorithm="
     Returns
     -------
     dict of float64 arrays (floats for a scalar time), on each time's Earth-Sun distance
-    (x 1.035 in early January to x 0.967 in early July of the values at 1 AU):
+    (x 1.035 in early January to x 0.967 in early July of the values at 1 AU), with the sun's
+    beam from its refracted position (its air mass and its angle on the plane: at 5 degrees
+    and 2,317 m the direct light 5 % above the geometric sun's) and the sky's light the
+    geometric sun's (sky-core's ``Daylight::refracted``):
         ``global_illuminance``, ``diffuse_illuminance``, ``direct_illuminance`` (on the
         horizontal plane) and ``direct_normal_illuminance`` (on a plane facing the sun): lx.
         ``x``, ``y``: CIE 1931 chromaticity of the global light (0, 0 with no light).
@@ -169,7 +180,14 @@ def daylight(latitude, longitude, times, aod=None, *, elevation=0.0, algorithm="
     micros, shape, scalar = _times(times)
     aod = _per_time("aod", aod, shape, DEFAULT_AOD)
     columns = _skymodels.daylight_series(
-        float(latitude), float(longitude), micros, aod, float(elevation), algorithm, scalar
+        float(latitude),
+        float(longitude),
+        micros,
+        aod,
+        float(elevation),
+        None if ozone_du is None else float(ozone_du),
+        algorithm,
+        scalar,
     )
     return _shaped(columns, shape, scalar)
 
@@ -180,7 +198,9 @@ def daylight_at_sun(sun_zenith, aod=None):
 
     For a sun position from elsewhere (pvlib's ``get_solarposition``: ``np.radians`` of its
     ``zenith`` column, the geometric one). Returns ``daylight``'s dict, in the shape of
-    ``sun_zenith``, at the mean Earth-Sun distance (1 AU: no date is given).
+    ``sun_zenith``, at the mean Earth-Sun distance (1 AU: no date is given), at sea level and
+    with the beam from the geometric sun (sky-core's ``Daylight::new``, the reference's sky;
+    ``daylight`` refracts the beam, which raises the direct light near the horizon).
     """
     zenith = _np.asarray(sun_zenith, dtype=_np.float64)
     shape, scalar = zenith.shape, zenith.ndim == 0

@@ -17,7 +17,7 @@ use std::io::Read;
 use serde_json::{Value, json};
 use sky_core::aoas::{AoasSky, DayCycle, Preset, Scattering};
 use sky_core::controller::{self, Decomposition, Light, Measurement, Settings};
-use sky_core::daylight::{self, Daylight};
+use sky_core::daylight::{self, ClearAtmosphere, Daylight};
 use sky_core::geom::{self, Equirect, Extent};
 use sky_core::led::{Channel, Luminaire};
 use sky_core::neural::pretrained;
@@ -113,15 +113,28 @@ fn daylight_values(day: &Daylight) -> Value {
     })
 }
 
+/// The daylight at a site: its pressure (elevation), the ozone column (the default unless the
+/// case gives one), the sun's beam refracted.
 fn daylight_case(case: &Value) -> Outcome {
     let aod = num32(case, "aod")?;
+    let ozone_du = if case["ozone_du"].is_null() {
+        daylight::OZONE_DU
+    } else {
+        num32(case, "ozone_du")?
+    };
     let algorithm = algorithm(case)?;
     let (site, time) = (site(case)?, time(case)?);
     Ok((|| {
-        let time = time?;
-        let sun = algorithm.position(&time, &site?)?;
+        let (time, site) = (time?, site?);
+        let sun = algorithm.position(&time, &site)?;
+        #[allow(clippy::cast_possible_truncation)]
+        let atmosphere = ClearAtmosphere {
+            aerosol_optical_depth: aod,
+            elevation_m: site.elevation() as f32,
+            ozone_du,
+        };
         Ok(daylight_values(
-            &Daylight::new(sun.sun(), aod)?.on_day(time.day_of_year()),
+            &Daylight::refracted(&sun, &atmosphere)?.on_day(time.day_of_year()),
         ))
     })())
 }
