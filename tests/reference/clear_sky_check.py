@@ -23,7 +23,9 @@ a shaded pyranometer), on the clear minutes of `tests/fixtures/clear_minutes.csv
 * by band of sun elevation, the clear-sky index of `sky-train schedule` (climatology alone),
   the luminous efficacy it converts the reading with (Perez 1990's global efficacy:
   `global_lux / ghi_wm2`) and SPCTRL2's own global efficacy for the site's clear atmosphere
-  (683 lm/W times the CIE 1931 y-bar of sky-core's table, over SPCTRL2's broadband global).
+  (683 lm/W times the CIE 1931 y-bar of sky-core's table, over SPCTRL2's broadband global);
+* by band, the clear-sky index in the morning and in the afternoon, with the station's own
+  closure (its global over its direct normal times cos Z plus its diffuse) in each.
 
 With `--lyngby`, DTU's solar station at Lyngby, Denmark (55.7906 N, 12.5251 E, 50 m; monthly
 1-minute files of github.com/AssessingSolar/dtu_solar_station, freely available but without a
@@ -142,6 +144,20 @@ def station(exe, data):
         print(f"  sun {lo:2d}-{hi:2d} deg: {m.sum():5d} minutes, clear-sky index {np.median(out.clear_sky_index.to_numpy()[m]):.3f}, "
               f"efficacy Perez {np.median(k_perez[m]):.1f} lm/W, SPCTRL2 {np.median(k_sp[m]):.1f} lm/W "
               f"(ratio {np.median(k_perez[m] / k_sp[m]):.3f})")
+    # Morning against afternoon: the index, and the station's own closure (its global over its
+    # direct normal times cos Z plus its diffuse), which an asymmetric instrument breaks.
+    measured = d.reindex(t.to_numpy())
+    closure = (measured.ghi / (measured.dni * np.cos(np.radians(measured.zenith)) + measured.dhi)).to_numpy()
+    morning = out.sun_azimuth_deg.to_numpy() < 180.0
+    for lo, hi in BANDS:
+        m = (e >= lo) & (e < hi)
+        am, pm = m & morning, m & ~morning
+        if am.sum() < 10 or pm.sum() < 10:
+            continue
+        k = out.clear_sky_index.to_numpy()
+        print(f"  sun {lo:2d}-{hi:2d} deg, morning / afternoon: {am.sum():4d} / {pm.sum():4d} minutes, clear-sky index "
+              f"{np.median(k[am]):.3f} / {np.median(k[pm]):.3f}, closure GHI / (DNI cos Z + DHI) "
+              f"{np.nanmedian(closure[am]):.3f} / {np.nanmedian(closure[pm]):.3f}")
 
 
 def lyngby(exe, files):
