@@ -443,8 +443,10 @@ fn sensor_level(elevation_deg: f64) -> f64 {
 /// The weather controllers' series: the UTC time and the reading of every step, every
 /// [`CONTROLLER_STEP_MIN`] minutes from 00:00 UTC of each of [`SERIES_DATES`]. The sensors
 /// take turns as a lux sensor, a pyranometer and a pyranometer pair (global and diffuse); on a
-/// clear day they read the clear sky ([`controller::clear_sky_illuminance`] in lux,
-/// [`controller::clear_sky_irradiance`] of it in W/m²) times [`sensor_level`], on the last day
+/// clear day they read the clear sky (the geometric sun's `Daylight::new` at [`CONTROLLER_AOD`]
+/// in lux, [`controller::clear_sky_irradiance`] of it in W/m²; the controller's own clear sky
+/// is the refracted one at the site, so this sensor reads its sky a little differently from
+/// the controller's model, as a real one does) times [`sensor_level`], on the last day
 /// times [`cloud_factor`] too; the pair's diffuse is the clear sky's share of it (its diffuse
 /// illuminance over its global), rising to all of it as the cloud thickens (factor 0.25).
 fn calibrated_series() -> Result<Vec<(UtcTime, Measurement)>, Box<dyn Error>> {
