@@ -234,17 +234,20 @@ pub(crate) fn daylight_series<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let site = time::site(latitude, longitude, elevation)?;
     let algorithm = time::algorithm(algorithm)?;
+    let defaults = Settings::default();
     let settings = Settings {
-        ozone_du: ozone_du.unwrap_or(Settings::default().ozone_du),
-        ..Settings::default()
+        ozone_du: ozone_du.unwrap_or(defaults.ozone_du),
+        ..defaults
     };
-    // The site's atmosphere (its elevation and ozone) is checked once, before any time.
+    // The site's atmosphere (its elevation and ozone) is checked once, before any time, and
+    // its errors name the keyword as `controller_step`'s do.
     let site_atmosphere = controller::clear_atmosphere(&site, &settings);
-    site_atmosphere.validate().map_err(|e| match e {
-        SkyError::OutOfRange { parameter, .. } if parameter.starts_with("ozone") => {
-            value_error("ozone_du", e)
-        }
-        _ => value_error("", e),
+    site_atmosphere.validate().map_err(|e| {
+        let keyword = match e {
+            SkyError::OutOfRange { parameter, .. } if parameter.starts_with("ozone") => "ozone_du",
+            _ => "elevation",
+        };
+        value_error(keyword, e)
     })?;
     let times = elements(&times)?;
     let aod = Broadcast::new("aod", &aod, times.len())?;

@@ -149,12 +149,12 @@ def station(exe, data):
     measured = d.reindex(t.to_numpy())
     closure = (measured.ghi / (measured.dni * np.cos(np.radians(measured.zenith)) + measured.dhi)).to_numpy()
     morning = out.sun_azimuth_deg.to_numpy() < 180.0
+    k = out.clear_sky_index.to_numpy()
     for lo, hi in BANDS:
         m = (e >= lo) & (e < hi)
         am, pm = m & morning, m & ~morning
         if am.sum() < 10 or pm.sum() < 10:
             continue
-        k = out.clear_sky_index.to_numpy()
         print(f"  sun {lo:2d}-{hi:2d} deg, morning / afternoon: {am.sum():4d} / {pm.sum():4d} minutes, clear-sky index "
               f"{np.median(k[am]):.3f} / {np.median(k[pm]):.3f}, closure GHI / (DNI cos Z + DHI) "
               f"{np.nanmedian(closure[am]):.3f} / {np.nanmedian(closure[pm]):.3f}")
