@@ -29,7 +29,8 @@ fn keyword(flag: &str) -> String {
 ///
 /// `aod` (0 to 5), `angstrom` (0 to 3), `aerosol_ssa` (single-scattering albedo, 0 to 1),
 /// `aerosol_g` (Henyey-Greenstein asymmetry, -0.95 to 0.95), `aerosol_scale_height` (m, 100 to
-/// 20000), `ozone_du` (Dobson units, 0 to 1000), `albedo` (the ground's, 0 to 1).
+/// 20000), `ozone_du` (Dobson units, 0 to 1000), `albedo` (the ground's, 0 to 1), `elevation`
+/// (the ground's above sea level, m, -500 to 6000: the air and ozone above it).
 ///
 /// The precomputation takes half a minute or more (28 s on a quiet 2-core machine), with the
 /// GIL released; it is kept on disk in `cache_dir` (None: sky-train's, `$SKY_TRAIN_CACHE_DIR`
@@ -85,6 +86,7 @@ impl PhysicalAtmosphere {
     #[new]
     #[pyo3(signature = (aod = None, *, angstrom = None, aerosol_ssa = None, aerosol_g = None,
                         aerosol_scale_height = None, ozone_du = None, albedo = None,
+                        elevation = None,
                         resolution = "default", cache_dir = None))]
     #[allow(clippy::too_many_arguments)] // the atmosphere's parameters, as keywords
     fn new(
@@ -96,6 +98,7 @@ impl PhysicalAtmosphere {
         aerosol_scale_height: Option<f64>,
         ozone_du: Option<f64>,
         albedo: Option<f64>,
+        elevation: Option<f64>,
         resolution: &str,
         cache_dir: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
@@ -108,6 +111,7 @@ impl PhysicalAtmosphere {
             aerosol_scale_height_m: aerosol_scale_height.unwrap_or(d.aerosol_scale_height_m),
             ozone_du: ozone_du.unwrap_or(d.ozone_du),
             ground_albedo: albedo.unwrap_or(d.ground_albedo),
+            site_elevation_m: elevation.unwrap_or(d.site_elevation_m),
         };
         let describe = |e: AtmosphereError| {
             value_error(

@@ -23,7 +23,11 @@ def test_the_wheel_is_the_variant_built():
     assert hasattr(skymodels, "PhysicalAtmosphere") == skymodels.HAS_PHYSICAL
 
 
-ATMOSPHERES = [{}, {"aod": 0.1, "ozone_du": 250.0, "albedo": 0.3, "angstrom": 1.1}]
+ATMOSPHERES = [
+    {},
+    {"aod": 0.1, "ozone_du": 250.0, "albedo": 0.3, "angstrom": 1.1},
+    {"aod": 0.05, "elevation": 2317.0},
+]
 
 
 def atmosphere(params):
@@ -64,6 +68,8 @@ def test_bad_atmospheres_and_suns_raise():
         atmosphere({"aod": 6.0})
     with pytest.raises(ValueError, match="ozone_du = -1"):
         atmosphere({"ozone_du": -1.0})
+    with pytest.raises(ValueError, match=r"elevation = 7000 is outside the valid range \[-500, 6000\]"):
+        atmosphere({"elevation": 7000.0})
     with pytest.raises(ValueError, match="resolution"):
         skymodels.PhysicalAtmosphere(resolution="fine")
     atm = atmosphere({})

@@ -493,6 +493,7 @@ fn physical_case(case: &Value, kind: &str) -> Outcome {
         aerosol_scale_height_m: get("aerosol_scale_height", d.aerosol_scale_height_m),
         ozone_du: get("ozone_du", d.ozone_du),
         ground_albedo: get("albedo", d.ground_albedo),
+        site_elevation_m: get("elevation", d.site_elevation_m),
     };
     let atm = cache::load_or_build_in(&atmosphere, &cache::small_resolution(), None, false)
         .map_err(|e| BadCase(format!("atmosphere: {e:#}")))?;
