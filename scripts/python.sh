@@ -79,8 +79,8 @@ case "$mode" in
   test)
     cargo fmt --manifest-path "$manifest" --all -- --check
     # Clippy always with the `physical` feature, so that its code (cfg-gated, no other path
-    # without it) compiles and is linted even where the wheel is built without it: about 20 s
-    # more of a check build (sky-train's dependencies).
+    # without it) compiles and is linted even where the wheel is built without it: a check build
+    # of sky-train's dependencies, 20 s on a quiet machine, 40 s in the full test command.
     cargo clippy --release --locked --quiet --manifest-path "$manifest" --workspace \
       --all-targets --features physical -- -D warnings
     build
