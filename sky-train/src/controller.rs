@@ -107,12 +107,14 @@ pub enum MeasurementFormat {
     /// list). A row whose GHI is missing (−9999.9) or flagged bad (flag not 0) is skipped; a
     /// missing or flagged diffuse leaves the GHI alone (split by `--decomposition`).
     Surfrad,
-    /// An NREL MIDC raw-data CSV file as the network delivers it: a header with `Year`, `DOY`
-    /// and, after it, the time column named by the station's standard time zone (`EST`, `CST`,
-    /// `MST`, `PST` or `UTC`) holding HHMM; GHI the first column whose name starts with
-    /// `Global` and holds `[W/m^2]` (not a standard deviation), DHI the first starting with
-    /// `Diffuse` likewise. Values of −7999 or less are missing: a row without the GHI is
-    /// skipped, a row without the DHI keeps the GHI alone.
+    /// An NREL MIDC CSV file as the network delivers it, in either of its two layouts: the
+    /// raw data (its data API: a header with `Year`, `DOY` and, after it, the time column
+    /// named by the station's standard time zone holding HHMM) or the web page's download
+    /// (`DATE (MM/DD/YYYY)` first, then the time column named by the zone holding HH:MM). The
+    /// zones: `EST`, `CST`, `MST`, `PST`, `AKST`, `HST` or `UTC`. GHI is the first column
+    /// whose name starts with `Global` and holds `[W/m^2]` (not a standard deviation), DHI the
+    /// first starting with `Diffuse` likewise. Values of −7999 or less are missing: a row
+    /// without the GHI is skipped, a row without the DHI keeps the GHI alone.
     Midc,
     /// A University of Oregon SRML archival file as the network delivers it (tab-separated; the
     /// layout of pvlib's `iotools.read_srml`): a header of the station's number, the year, then
@@ -505,11 +507,11 @@ enum Layout {
         ghi: Option<usize>,
         dhi: Option<usize>,
     },
-    /// Year, day of year, HHMM local standard time `offset_hours` behind UTC, GHI, DHI.
+    /// The date ([`MidcDate`]), the time of day in local standard time `offset_hours` behind
+    /// UTC at column `time`, GHI, DHI.
     Midc {
-        year: usize,
-        doy: usize,
-        hhmm: usize,
+        date: MidcDate,
+        time: usize,
         offset_hours: u32,
         ghi: usize,
         dhi: Option<usize>,
@@ -522,6 +524,15 @@ enum Layout {
         ghi: usize,
         dhi: Option<usize>,
     },
+}
+
+/// Where a MIDC file's date is, and so which of its two layouts it has.
+#[derive(Clone, Copy)]
+enum MidcDate {
+    /// The raw data's `Year` and `DOY` columns; the time is HHMM.
+    YearDay { year: usize, doy: usize },
+    /// The web download's `DATE (MM/DD/YYYY)` column; the time is HH:MM.
+    Calendar { date: usize },
 }
 
 /// An SRML value whose flag is this is missing or bad.
@@ -579,19 +590,31 @@ impl Layout {
             ))
         };
         let find = |c: &str| columns.iter().position(|h| h == c);
-        let year = find("year").ok_or_else(|| bad("has no Year column"))?;
-        let doy = find("doy").ok_or_else(|| bad("has no DOY column"))?;
-        let hhmm = doy + 1;
-        let offset_hours = match columns.get(hhmm).map(String::as_str) {
+        let (date, time) = match find("date (mm/dd/yyyy)") {
+            Some(date) => (MidcDate::Calendar { date }, date + 1),
+            None => {
+                let year = find("year")
+                    .ok_or_else(|| bad("has neither a DATE (MM/DD/YYYY) nor a Year column"))?;
+                let doy = find("doy").ok_or_else(|| bad("has no DOY column"))?;
+                (MidcDate::YearDay { year, doy }, doy + 1)
+            }
+        };
+        let offset_hours = match columns.get(time).map(String::as_str) {
             Some("utc" | "gmt" | "ut") => 0,
             Some("est") => 5,
             Some("cst") => 6,
             Some("mst") => 7,
             Some("pst") => 8,
+            Some("akst") => 9,
+            Some("hst") => 10,
             _ => {
-                return Err(bad(
-                    "has no time column after DOY named EST, CST, MST, PST or UTC",
-                ));
+                return Err(bad(&format!(
+                    "has no time column after {} named EST, CST, MST, PST, AKST, HST or UTC",
+                    match date {
+                        MidcDate::Calendar { .. } => "DATE (MM/DD/YYYY)",
+                        MidcDate::YearDay { .. } => "DOY",
+                    }
+                )));
             }
         };
         let irradiance = |start: &str| {
@@ -602,9 +625,8 @@ impl Layout {
         let ghi = irradiance("global")
             .ok_or_else(|| bad("has no column starting with `Global` in [W/m^2]"))?;
         Ok(Self::Midc {
-            year,
-            doy,
-            hhmm,
+            date,
+            time,
             offset_hours,
             ghi,
             dhi: irradiance("diffuse"),
@@ -684,9 +706,8 @@ impl Layout {
                 Ok(Some((unix, measurement)))
             }
             Self::Midc {
-                year,
-                doy,
-                hhmm,
+                date,
+                time,
                 offset_hours,
                 ghi,
                 dhi,
@@ -700,9 +721,17 @@ impl Layout {
                     })?;
                     Ok((x > MIDC_MISSING).then_some(x))
                 };
-                let y = int(year, "Year", 1..=2999)?;
-                let day = int(doy, "DOY", 1..=366)?;
-                let t = hours_minutes(&fields, hhmm, 0..=2359, error)?;
+                let unix = match date {
+                    MidcDate::YearDay { year, doy } => {
+                        let y = int(year, "Year", 1..=2999)?;
+                        let day = int(doy, "DOY", 1..=366)?;
+                        let t = hours_minutes(&fields, time, 0..=2359, error)?;
+                        standard_time(y, day, t, offset_hours)
+                    }
+                    MidcDate::Calendar { date } => {
+                        calendar_time(&fields, date, time, offset_hours, error)?
+                    }
+                };
                 let Some(g) = number(ghi, "the global irradiance")? else {
                     return Ok(None);
                 };
@@ -710,7 +739,6 @@ impl Layout {
                     Some(i) => number(i, "the diffuse irradiance")?,
                     None => None,
                 };
-                let unix = standard_time(y, day, t, offset_hours);
                 Ok(Some((unix, station_reading(g, d))))
             }
             Self::Surfrad => {
@@ -817,6 +845,50 @@ fn hours_minutes(
         return Err(error(format!("the time {t:04}: not HHMM")));
     }
     Ok(t)
+}
+
+/// The instant of MIDC's web download: field `date` MM/DD/YYYY and field `time` HH:MM (00:00 to
+/// 23:59) in a standard time `offset_hours` behind UTC; a malformed or impossible date or time
+/// is an error naming the field.
+fn calendar_time(
+    fields: &[&str],
+    date: usize,
+    time: usize,
+    offset_hours: u32,
+    error: &dyn Fn(String) -> ParamError,
+) -> Result<UnixTime, ParamError> {
+    use crate::csv_input::shown;
+    let field = |i: usize| fields.get(i).copied().unwrap_or("");
+    let (d, t) = (field(date), field(time));
+    let parts = |text: &str, separator: char, widths: &[usize]| -> Option<Vec<u32>> {
+        let parts: Vec<&str> = text.split(separator).collect();
+        (parts.len() == widths.len()
+            && parts
+                .iter()
+                .zip(widths)
+                .all(|(p, &w)| (1..=w).contains(&p.len()) && p.bytes().all(|b| b.is_ascii_digit())))
+        .then(|| parts.iter().filter_map(|p| p.parse().ok()).collect())
+    };
+    let Some([month, day, year]) =
+        parts(d, '/', &[2, 2, 4]).and_then(|v| <[u32; 3]>::try_from(v).ok())
+    else {
+        return Err(error(format!(
+            "DATE (MM/DD/YYYY) `{}`: expected MM/DD/YYYY",
+            shown(d)
+        )));
+    };
+    let Some([hour, minute]) = parts(t, ':', &[2, 2])
+        .and_then(|v| <[u32; 2]>::try_from(v).ok())
+        .filter(|&[h, m]| h <= 23 && m <= 59)
+    else {
+        return Err(error(format!(
+            "the time `{}`: expected HH:MM, 00:00 to 23:59",
+            shown(t)
+        )));
+    };
+    let text =
+        format!("{year:04}-{month:02}-{day:02}T{hour:02}:{minute:02}:00-{offset_hours:02}:00");
+    UnixTime::parse(&text).map_err(|e| error(format!("DATE (MM/DD/YYYY) `{}`: {e:#}", shown(d))))
 }
 
 /// The time `hhmm` ([`hours_minutes`]) of day `day` (1 = 1 January) of `year` (1-2999, as the
@@ -1273,6 +1345,74 @@ mod tests {
         )
         .expect_err("zone");
         assert!(e.contains("line 1: the MIDC header"), "{e}");
+    }
+
+    /// MIDC's web download (DATE (MM/DD/YYYY), then HH:MM in the header's zone): the time in
+    /// UTC across midnight and the year's end, the columns by name, and each malformed date or
+    /// time named with its line.
+    #[test]
+    fn midc_web_downloads_are_read_and_bad_ones_named() {
+        let header = "DATE (MM/DD/YYYY),HST,Global PSP [W/m^2],Global PSP (Accumulated) [kWhr/m^2],Diffuse Horiz [W/m^2]\n";
+        let rows = parse_as(
+            &format!("{header}10/14/2018,00:00,-7.69,4.6,0\n10/14/2018,13:59,-7999,0,3\n12/31/2018,14:30,5,0,3\n02/29/2020,23:59,7,0,-7999\n"),
+            MeasurementFormat::Midc,
+        )
+        .expect("MIDC web download");
+        let times: Vec<String> = rows.iter().map(|r| r.unix.rfc3339()).collect();
+        assert_eq!(
+            times,
+            [
+                "2018-10-14T10:00:00Z",
+                "2019-01-01T00:30:00Z",
+                "2020-03-01T09:59:00Z"
+            ],
+            "HST is 10 hours behind UTC; the missing GHI's row skipped"
+        );
+        assert!(
+            matches!(rows[0].measurement, Measurement::Irradiance { global, diffuse } if global == -7.69 && diffuse == 0.0)
+        );
+        assert!(matches!(rows[2].measurement, Measurement::GlobalIrradiance(g) if g == 7.0));
+        for (row, needle) in [
+            (
+                "2018-10-14,00:00,5,0,3",
+                "line 2: DATE (MM/DD/YYYY) `2018-10-14`: expected MM/DD/YYYY",
+            ),
+            (
+                "02/30/2018,00:00,5,0,3",
+                "line 2: DATE (MM/DD/YYYY) `02/30/2018`",
+            ),
+            (
+                "13/01/2018,00:00,5,0,3",
+                "line 2: DATE (MM/DD/YYYY) `13/01/2018`",
+            ),
+            (
+                "10/14/2018,24:00,5,0,3",
+                "line 2: the time `24:00`: expected HH:MM, 00:00 to 23:59",
+            ),
+            ("10/14/2018,0600,5,0,3", "line 2: the time `0600`"),
+            (
+                "10/14/2018,06:00,x,0,3",
+                "line 2: the global irradiance `x`",
+            ),
+        ] {
+            let e = parse_as(&format!("{header}{row}\n"), MeasurementFormat::Midc).expect_err(row);
+            assert!(e.contains(needle) && !e.contains('\n'), "{row}: {e}");
+        }
+        let e = parse_as(
+            "DATE (MM/DD/YYYY),CET,Global PSP [W/m^2]\n",
+            MeasurementFormat::Midc,
+        )
+        .expect_err("zone");
+        assert!(
+            e.contains("line 1: the MIDC header") && e.contains("after DATE (MM/DD/YYYY)"),
+            "{e}"
+        );
+        let e = parse_as("Date,MST,Global PSP [W/m^2]\n", MeasurementFormat::Midc)
+            .expect_err("no date");
+        assert!(
+            e.contains("neither a DATE (MM/DD/YYYY) nor a Year column"),
+            "{e}"
+        );
     }
 
     /// SRML and BSRN files: the header's year and elements, the fixed columns, missing values,

@@ -592,6 +592,8 @@ type Site = [&'static str; 3];
 const ALAMOSA: Site = ["37.70", "-105.92", "2317"];
 /// NREL MIDC, University of Arizona, Tucson.
 const TUCSON: Site = ["32.22969", "-110.95534", "786"];
+/// NREL MIDC, National Wind Technology Center, M2 tower (near Boulder, Colorado).
+const NWTC_M2: Site = ["39.9106", "-105.2347", "1855"];
 /// University of Oregon SRML, Eugene.
 const EUGENE: Site = ["44.0467", "-123.0743", "150"];
 /// BSRN Payerne, Switzerland.
@@ -746,6 +748,49 @@ fn a_raw_midc_file_runs() {
         .count();
     println!("MIDC UAT: {} rows, {up} with the sun up", lines.len());
     assert!(up > 100 && up < lines.len());
+}
+
+/// Issue 24 item 3: an NREL MIDC file as its web page downloads it (`DATE (MM/DD/YYYY)`,
+/// `MST` as HH:MM; NWTC M2, 14 October 2018, 05:00-08:59 MST: night globals of −4 to −6
+/// W/m², sunrise, no diffuse column) runs with no NaN anywhere, its times shifted from MST to
+/// UTC, its global the file's (offsets as 0) and split by the default model.
+#[test]
+fn a_midc_web_download_runs() {
+    let file = station_file("midc-web-20181014-part.txt");
+    let raw = std::fs::read_to_string(&file).expect("the MIDC file");
+    let rows: Vec<(&str, f64)> = raw
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            (f[1], num(f[2]))
+        })
+        .collect();
+    assert!(rows.iter().any(|r| r.1 < -4.0) && rows.iter().any(|r| r.1 > 200.0));
+    let out = schedule_station(&file, NWTC_M2, "midc", &[]);
+    assert_finite_fields(&out);
+    let lines = rows_of(&out);
+    assert_eq!(lines.len(), rows.len());
+    for (f, (clock, ghi)) in lines.iter().zip(&rows) {
+        let (h, m) = clock.split_once(':').expect("HH:MM");
+        let want = format!(
+            "2018-10-14T{:02}:{m}:00Z",
+            h.parse::<u32>().expect("hour") + 7
+        );
+        assert_eq!(f["utc"], want);
+        assert!((num(f["ghi_wm2"]) - ghi.max(0.0)).abs() < 1e-3, "{f:?}");
+        assert!(num(f["dhi_wm2"]) <= num(f["ghi_wm2"]), "{f:?}");
+    }
+    let split = lines
+        .iter()
+        .filter(|f| num(f["ghi_wm2"]) > 50.0)
+        .filter(|f| num(f["dhi_wm2"]) > 0.0 && num(f["dni_wm2"]) > 0.0)
+        .count();
+    println!(
+        "MIDC web download, NWTC M2: {} rows, {split} split into diffuse and beam",
+        lines.len()
+    );
+    assert!(split > 60, "{split}");
 }
 
 /// A University of Oregon SRML archival file as delivered (tab-separated; PST, the time at the
