@@ -29,7 +29,8 @@ use crate::solar;
 ///
 /// * NaN or infinite values are [`SkyError::NotFinite`];
 /// * a negative value down to [`THERMAL_OFFSET_LIMIT`] W/m² (a pyranometer's thermal offset,
-///   −1.8 to −7.7 W/m² at night in SURFRAD and MIDC files) or [`THERMAL_OFFSET_LIMIT_LUX`] lx
+///   −1.8 to −9.2 W/m² at night in the SURFRAD and MIDC files read here, down to −15 W/m² for
+///   a ventilated, shaded PSP under a clear sky) or [`THERMAL_OFFSET_LIMIT_LUX`] lx
 ///   counts as 0; a value below it is [`SkyError::OutOfRange`] naming the reading (a sensor
 ///   fault, not an offset); values below `f32::MIN_POSITIVE` (subnormal) count as 0 too;
 /// * a diffuse above the global by at most [`DIFFUSE_EXCESS_TOLERANCE`] W/m² or
@@ -137,16 +138,22 @@ pub const EFFICACY_ITERATIONS: usize = 8;
 pub const FIRST_EFFICACY: f32 = 110.0;
 
 /// The most negative irradiance reading taken for a sensor's thermal offset and counted as 0,
-/// W/m² (as a magnitude: readings down to −10 W/m² count as 0; [`Measurement`]).
-pub const THERMAL_OFFSET_LIMIT: f32 = 10.0;
+/// W/m² (as a magnitude: readings down to −20 W/m² count as 0; [`Measurement`]). A
+/// ventilated, shaded Eppley PSP's offset reaches −15 W/m² under a clear sky, its night
+/// signal −10 W/m² (Haeffelin, Kato, Smith, Rutledge, Charlock, Mahan, *Determination of the
+/// thermal offset of the Eppley precision spectral pyranometer*, Applied Optics, 2001);
+/// the limit leaves an unventilated sensor a margin beyond that (NREL MIDC's NWTC M2 PSP logs
+/// −9.2 W/m² at night in pvlib's `midc_20181014.txt`). Below it a reading is a fault.
+pub const THERMAL_OFFSET_LIMIT: f32 = 20.0;
 
 /// The same for a lux sensor, lx: [`THERMAL_OFFSET_LIMIT`] at the first-guess efficacy of
 /// 110 lm/W, so that both kinds of reading follow one rule.
 pub const THERMAL_OFFSET_LIMIT_LUX: f32 = THERMAL_OFFSET_LIMIT * FIRST_EFFICACY;
 
 /// A diffuse reading above the global by at most this much, W/m², counts as the global
-/// ([`Measurement`]).
-pub const DIFFUSE_EXCESS_TOLERANCE: f32 = THERMAL_OFFSET_LIMIT;
+/// ([`Measurement`]): two sensors' offsets and cosine errors near the horizon, up to 5.9 W/m² in
+/// SURFRAD Alamosa's record of 1 January 2016.
+pub const DIFFUSE_EXCESS_TOLERANCE: f32 = 10.0;
 
 /// A diffuse reading above the global by at most this fraction of the global counts as the
 /// global, when that is more than [`DIFFUSE_EXCESS_TOLERANCE`] ([`Measurement`]).

@@ -58,7 +58,7 @@ fn column<'a>(csv: &'a str, column: &str) -> Vec<&'a str> {
 }
 
 /// Item 10: `sample --model perez` and `schedule` follow one rule for negative readings: a
-/// thermal offset down to −10 W/m² (−1100 lx) is 0 in both, below it both refuse. Today's
+/// thermal offset down to −20 W/m² (−2200 lx) is 0 in both, below it both refuse. Today's
 /// binary: schedule refuses −5, sample takes −50 and −2000 lx.
 #[test]
 fn negative_readings_follow_one_rule_in_sample_and_schedule() {
@@ -74,8 +74,8 @@ fn negative_readings_follow_one_rule_in_sample_and_schedule() {
     succeeds(&strs(&sample_perez(&["--ghi", "-5"])), "0,0\n");
     succeeds(&strs(&sample_perez(&["--global-lux", "-1"])), "0,0\n");
     for [flag, value, limit] in [
-        ["--ghi", "-50", "-10 W/m²"],
-        ["--global-lux", "-2000", "-1100 lx"],
+        ["--ghi", "-50", "-20 W/m²"],
+        ["--global-lux", "-3000", "-2200 lx"],
     ] {
         let code = fails(
             &strs(&sample_perez(&[flag, value])),
@@ -93,7 +93,7 @@ fn negative_readings_follow_one_rule_in_sample_and_schedule() {
     let code = fails(
         &strs(&a),
         "",
-        &["fault.csv line 2", "ghi_wm2", "-50", "-10"],
+        &["fault.csv line 2", "ghi_wm2", "-50", "-20"],
         &[],
     );
     assert_eq!(code, 2);

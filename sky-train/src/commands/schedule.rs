@@ -29,7 +29,7 @@ pub struct ScheduleArgs {
     /// Drive the schedule by outdoor measurements instead of the clear sky: a file of readings
     /// (--measurements-format; the default CSV's header names `utc` (RFC 3339) and `global_lux`
     /// (a lux sensor) or `ghi_wm2` with optional `dhi_wm2` (pyranometers)). Thermal offsets
-    /// down to -10 W/m2 (-1100 lx) count as 0, a diffuse up to max(10 W/m2, 5 %) above the
+    /// down to -20 W/m2 (-2200 lx) count as 0, a diffuse up to max(10 W/m2, 5 %) above the
     /// global as the global; night readings are used. One output row per reading: the sun; the
     /// light followed (cct_k, duv, horizontal_lux, RGBW, x, y, melanopic_edi_lux: the measured
     /// light with its colour under cloud); ghi_wm2, dhi_wm2, dni_wm2 (the reading and its
