@@ -8,6 +8,7 @@ use std::io::Write;
 use anyhow::{Context, Result};
 use std::path::Path;
 
+use sky_core::SkyError;
 use sky_core::clear_period::Criteria;
 use sky_core::controller::{
     History, Measurement, Settings, Step, example_luminaire, step, step_calibrated,
@@ -1112,23 +1113,56 @@ pub fn schedule_measured(
             Some(r.measurement),
             history,
         )
-        .map_err(|e| located(r, e))
     };
+    // In the stations' formats a global above the physical limit is set aside like a flagged
+    // reading (its row skipped), in the project's CSV it is refused.
+    let station = format != MeasurementFormat::Csv;
+    let skipped = |e: &SkyError| station && above_physical_limit(e);
     let mut history = History::new();
     let mut set_aside: Option<(usize, usize)> = None; // (rows, the first's line)
+    let mut too_bright: Option<(usize, usize, f32)> = None; // (rows, the first's line, reading)
     let alone = |r: &MeasuredRow| if global_only { r.global_alone() } else { *r };
+    let mut rows = 0usize;
     read_measurements(file, format, &mut |r| {
         let r = &alone(r);
+        rows += 1;
+        match run(r, &mut history) {
+            Err(e) if skipped(&e) => {
+                let (n, first, value) =
+                    too_bright.unwrap_or((0, r.line, global_of(&r.measurement)));
+                too_bright = Some((n + 1, first, value));
+                return Ok(());
+            }
+            Err(e) => return Err(located(r, e).into()),
+            Ok(_) => {}
+        }
         if r.diffuse_set_aside {
             let (n, first) = set_aside.unwrap_or((0, r.line));
             set_aside = Some((n + 1, first));
         }
-        run(r, &mut history).map(|_| ()).map_err(Into::into)
+        Ok(())
     })?;
     if let Some((n, first)) = set_aside {
         eprintln!(
             "note: --measurements {}: {n} row(s) with the diffuse above the global by more than max(10 W/m2, 5 %) (first on line {first}): their diffuse set aside, the global split by the separation model",
             file.display()
+        );
+    }
+    if let Some((n, first, value)) = too_bright {
+        // A spike now and then is a sensor's; many are a clock or a site that is not the
+        // file's, and a schedule from them would follow the wrong sun.
+        if n > MAX_ABOVE_LIMIT_ROWS.max(rows / 100) {
+            return Err(ParamError(format!(
+                "--measurements {}: {n} of {rows} rows have the global above {} times the extraterrestrial horizontal irradiance (first on line {first}: {value} W/m2), more than 1 % or {MAX_ABOVE_LIMIT_ROWS}: is the file's clock in the time zone its header or format names, and are --lat/--lon/--elevation the station's?",
+                file.display(),
+                sky_core::decomposition::MAX_CLEARNESS_INDEX
+            ))
+            .into());
+        }
+        eprintln!(
+            "note: --measurements {}: {n} row(s) with the global above {} times the extraterrestrial horizontal irradiance, which no sky gives (first on line {first}: {value} W/m2; a spike, or the file's clock off): skipped, as flagged readings are",
+            file.display(),
+            sky_core::decomposition::MAX_CLEARNESS_INDEX
         );
     }
     // Readings more than 30 minutes apart (or less than one): no clear-period detection, so
@@ -1148,7 +1182,7 @@ pub fn schedule_measured(
         let r = &alone(r);
         let line = match learner.as_mut() {
             Some(cal) => {
-                let (s, c) = step_calibrated(
+                match step_calibrated(
                     &r.time,
                     &site,
                     &config.settings_in(r.time.month()),
@@ -1156,11 +1190,17 @@ pub fn schedule_measured(
                     r.measurement,
                     cal,
                     &mut history,
-                )
-                .map_err(|e| located(r, e))?;
-                measured_fields(&s, Some(&c))
+                ) {
+                    Ok((s, c)) => measured_fields(&s, Some(&c)),
+                    Err(e) if skipped(&e) => return Ok(()),
+                    Err(e) => return Err(located(r, e).into()),
+                }
             }
-            None => measured_fields(&run(r, &mut history)?, None),
+            None => match run(r, &mut history) {
+                Ok(s) => measured_fields(&s, None),
+                Err(e) if skipped(&e) => return Ok(()),
+                Err(e) => return Err(located(r, e).into()),
+            },
         };
         writeln!(output, "{},{line}", r.unix.rfc3339())?;
         Ok(())
@@ -1173,6 +1213,27 @@ pub fn schedule_measured(
         })?;
     }
     Ok(())
+}
+
+/// The most rows of a station's file skipped for a global above the physical limit before the
+/// file is refused, unless 1 % of its rows is more ([`schedule_measured`]).
+const MAX_ABOVE_LIMIT_ROWS: usize = 10;
+
+/// Whether `e` refuses a global reading above the physical limit (more than
+/// [`sky_core::decomposition::MAX_CLEARNESS_INDEX`] times the extraterrestrial horizontal
+/// irradiance), not one below the thermal-offset limit or any other error.
+fn above_physical_limit(e: &SkyError) -> bool {
+    matches!(e, SkyError::OutOfRange { parameter, value, .. }
+        if parameter.starts_with("global irradiance") && *value > 0.0)
+}
+
+/// The global irradiance of a station's reading, W/m² (0 for a lux reading, which the stations'
+/// formats do not give).
+fn global_of(m: &Measurement) -> f32 {
+    match *m {
+        Measurement::GlobalIrradiance(g) | Measurement::Irradiance { global: g, .. } => g,
+        Measurement::GlobalIlluminance(_) => 0.0,
+    }
 }
 
 /// The file's column for a sky-core parameter.

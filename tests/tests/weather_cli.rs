@@ -793,6 +793,70 @@ fn a_midc_web_download_runs() {
     assert!(split > 60, "{split}");
 }
 
+/// A station file's global above what any sky gives (a spike of 2,500 W/m² after sunrise in
+/// the MIDC download above) is skipped like a flagged reading, the rest run; the same reading
+/// in the project's CSV is refused; and a file whose clock is not the one its header names (MST
+/// read as EST: two hours early, the morning's light before sunrise) is refused, naming the
+/// time zone, rather than scheduled against the wrong sun.
+#[test]
+fn a_station_file_spike_is_skipped_and_a_wrong_clock_refused() {
+    let raw = std::fs::read_to_string(station_file("midc-web-20181014-part.txt")).expect("MIDC");
+    let dir = tempfile::tempdir().expect("temp dir");
+    let spiked: String = raw
+        .lines()
+        .map(|l| {
+            let mut f: Vec<&str> = l.split(',').collect();
+            if f[1] == "07:28" {
+                f[2] = "2500";
+            }
+            f.join(",") + "\n"
+        })
+        .collect();
+    let file = dir.path().join("spike.txt");
+    std::fs::write(&file, &spiked).expect("write");
+    let out = schedule_station(file.to_str().expect("UTF-8"), NWTC_M2, "midc", &[]);
+    assert_finite_fields(&out);
+    let lines = rows_of(&out);
+    assert_eq!(lines.len(), raw.lines().count() - 2, "one row skipped");
+    assert!(lines.iter().all(|f| f["utc"] != "2018-10-14T14:28:00Z"));
+    assert!(lines.iter().any(|f| f["utc"] == "2018-10-14T14:27:00Z"));
+    let csv = dir.path().join("spike.csv");
+    std::fs::write(&csv, "utc,ghi_wm2\n2018-10-14T14:28:00Z,2500\n").expect("write");
+    let [lat, lon, elevation] = NWTC_M2;
+    let args = |path: &std::path::Path| {
+        vec![
+            "schedule".to_owned(),
+            "--lat".to_owned(),
+            lat.to_owned(),
+            "--lon".to_owned(),
+            lon.to_owned(),
+            "--elevation".to_owned(),
+            elevation.to_owned(),
+            "--measurements".to_owned(),
+            path.to_str().expect("UTF-8").to_owned(),
+        ]
+    };
+    let a = args(&csv);
+    let (e, parameter) = run(&a.iter().map(String::as_str).collect::<Vec<_>>(), "")
+        .expect_err("the CSV's reading above the limit");
+    assert!(
+        parameter && e.contains("line 2") && e.contains("2500"),
+        "{e}"
+    );
+    let shifted = raw.replacen(",MST,", ",EST,", 1);
+    let file = dir.path().join("est.txt");
+    std::fs::write(&file, shifted).expect("write");
+    let mut a = args(&file);
+    a.extend(["--measurements-format".to_owned(), "midc".to_owned()]);
+    let (e, parameter) = run(&a.iter().map(String::as_str).collect::<Vec<_>>(), "")
+        .expect_err("a clock two hours off");
+    println!("{e}");
+    assert!(
+        parameter && e.contains("time zone") && e.contains("of 240 rows"),
+        "{e}"
+    );
+}
+
 /// A University of Oregon SRML archival file as delivered (tab-separated; PST, the time at the
 /// end of each minute; GHI element 1000, no DHI): every row with its GHI runs, the time is the
 /// stamp in UTC and the reading the file's (offsets as 0), the GHI alone split by DIRINT.

@@ -52,7 +52,10 @@ pub struct ScheduleArgs {
     /// time at the interval's end, elements 100x GHI and 300x DHI, flag 99 missing) or bsrn (a
     /// BSRN station-to-archive month: the basic measurements' record, UTC). In the stations'
     /// formats a diffuse above the global by more than max(10 W/m2, 5 %) is set aside (the
-    /// global split by --decomposition; a note on stderr counts such rows).
+    /// global split by --decomposition; a note on stderr counts such rows), and a row whose
+    /// global is above 1.5 times the extraterrestrial horizontal irradiance is skipped (a note
+    /// counts them; more than 10 such rows and 1 % of the file is refused: a clock or site that
+    /// is not the station's).
     #[arg(long, value_enum, value_name = "FORMAT", default_value_t = FormatArg::Csv, requires = "measurements")]
     pub measurements_format: FormatArg,
     /// Read only the global of --measurements, leaving out its diffuse: every row's global is
