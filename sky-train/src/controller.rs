@@ -111,10 +111,11 @@ pub enum MeasurementFormat {
     /// An NREL MIDC CSV file as the network delivers it, in either of its two layouts: the
     /// raw data (its data API: a header with `Year`, `DOY` and, after it, the time column
     /// named by the station's standard time zone holding HHMM) or the web page's download
-    /// (`DATE (MM/DD/YYYY)` first, then the time column named by the zone holding HH:MM). The
-    /// zones: `EST`, `CST`, `MST`, `PST`, `AKST`, `HST` or `UTC`. GHI is the first column
-    /// whose name starts with `Global` and holds `[W/m^2]` (not a standard deviation), DHI the
-    /// first starting with `Diffuse` likewise. Values of −7999 or less are missing: a row
+    /// (`DATE (MM/DD/YYYY)` or `DATE (YYYY/MM/DD)`, then the time column named by the zone
+    /// holding HH:MM). The zones: `EST`, `CST`, `MST`, `PST`, `AKST`, `HST` or `UTC`. GHI is
+    /// the first column whose name starts with `Global` and holds `[W/m^2]` (not a standard
+    /// deviation, a tilted plane or an ultraviolet band), DHI the first starting with
+    /// `Diffuse` likewise. Values of −7999 or less are missing: a row
     /// without the GHI is skipped, a row without the DHI keeps the GHI alone.
     Midc,
     /// A University of Oregon SRML archival file as the network delivers it (tab-separated; the
@@ -532,8 +533,9 @@ enum Layout {
 enum MidcDate {
     /// The raw data's `Year` and `DOY` columns; the time is HHMM.
     YearDay { year: usize, doy: usize },
-    /// The web download's `DATE (MM/DD/YYYY)` column; the time is HH:MM.
-    Calendar { date: usize },
+    /// The web download's `DATE (MM/DD/YYYY)` or `DATE (YYYY/MM/DD)` column (`year_first`);
+    /// the time is HH:MM.
+    Calendar { date: usize, year_first: bool },
 }
 
 /// An SRML value whose flag is this is missing or bad.
@@ -591,11 +593,15 @@ impl Layout {
             ))
         };
         let find = |c: &str| columns.iter().position(|h| h == c);
-        let (date, time) = match find("date (mm/dd/yyyy)") {
-            Some(date) => (MidcDate::Calendar { date }, date + 1),
+        let calendar = find("date (mm/dd/yyyy)")
+            .map(|date| (date, false))
+            .or_else(|| find("date (yyyy/mm/dd)").map(|date| (date, true)));
+        let (date, time) = match calendar {
+            Some((date, year_first)) => (MidcDate::Calendar { date, year_first }, date + 1),
             None => {
-                let year = find("year")
-                    .ok_or_else(|| bad("has neither a DATE (MM/DD/YYYY) nor a Year column"))?;
+                let year = find("year").ok_or_else(|| {
+                    bad("has no DATE (MM/DD/YYYY), DATE (YYYY/MM/DD) or Year column")
+                })?;
                 let doy = find("doy").ok_or_else(|| bad("has no DOY column"))?;
                 (MidcDate::YearDay { year, doy }, doy + 1)
             }
@@ -612,16 +618,24 @@ impl Layout {
                 return Err(bad(&format!(
                     "has no time column after {} named EST, CST, MST, PST, AKST, HST or UTC",
                     match date {
-                        MidcDate::Calendar { .. } => "DATE (MM/DD/YYYY)",
+                        MidcDate::Calendar { .. } => "DATE",
                         MidcDate::YearDay { .. } => "DOY",
                     }
                 )));
             }
         };
+        // A horizontal irradiance: not a standard deviation, a tilted plane (BMS's `Global
+        // 40-South CMP11`) or an ultraviolet band.
         let irradiance = |start: &str| {
-            columns
-                .iter()
-                .position(|c| c.starts_with(start) && c.contains("[w/m^2]") && !c.contains("stdev"))
+            columns.iter().position(|c| {
+                c.starts_with(start)
+                    && c.contains("[w/m^2]")
+                    && ![
+                        "stdev", "std dev", "north", "south", "east", "west", "tilt", "poa", "uv",
+                    ]
+                    .iter()
+                    .any(|w| c.contains(w))
+            })
         };
         let ghi = irradiance("global")
             .ok_or_else(|| bad("has no column starting with `Global` in [W/m^2]"))?;
@@ -729,8 +743,8 @@ impl Layout {
                         let t = hours_minutes(&fields, time, 0..=2359, error)?;
                         standard_time(y, day, t, offset_hours)
                     }
-                    MidcDate::Calendar { date } => {
-                        calendar_time(&fields, date, time, offset_hours, error)?
+                    MidcDate::Calendar { date, year_first } => {
+                        calendar_time(&fields, date, year_first, time, offset_hours, error)?
                     }
                 };
                 let Some(g) = number(ghi, "the global irradiance")? else {
@@ -848,12 +862,13 @@ fn hours_minutes(
     Ok(t)
 }
 
-/// The instant of MIDC's web download: field `date` MM/DD/YYYY and field `time` HH:MM (00:00 to
-/// 23:59) in a standard time `offset_hours` behind UTC; a malformed or impossible date or time
-/// is an error naming the field.
+/// The instant of MIDC's web download: field `date` MM/DD/YYYY (YYYY/MM/DD if `year_first`)
+/// and field `time` HH:MM (00:00 to 23:59) in a standard time `offset_hours` behind UTC; a
+/// malformed or impossible date or time is an error naming the field.
 fn calendar_time(
     fields: &[&str],
     date: usize,
+    year_first: bool,
     time: usize,
     offset_hours: u32,
     error: &dyn Fn(String) -> ParamError,
@@ -870,14 +885,18 @@ fn calendar_time(
                 .all(|(p, &w)| (1..=w).contains(&p.len()) && p.bytes().all(|b| b.is_ascii_digit())))
         .then(|| parts.iter().filter_map(|p| p.parse().ok()).collect())
     };
-    let Some([month, day, year]) =
-        parts(d, '/', &[2, 2, 4]).and_then(|v| <[u32; 3]>::try_from(v).ok())
-    else {
+    let (layout, widths) = if year_first {
+        ("YYYY/MM/DD", [4, 2, 2])
+    } else {
+        ("MM/DD/YYYY", [2, 2, 4])
+    };
+    let Some([a, b, c]) = parts(d, '/', &widths).and_then(|v| <[u32; 3]>::try_from(v).ok()) else {
         return Err(error(format!(
-            "DATE (MM/DD/YYYY) `{}`: expected MM/DD/YYYY",
+            "DATE ({layout}) `{}`: expected {layout}",
             shown(d)
         )));
     };
+    let (year, month, day) = if year_first { (a, b, c) } else { (c, a, b) };
     let Some([hour, minute]) = parts(t, ':', &[2, 2])
         .and_then(|v| <[u32; 2]>::try_from(v).ok())
         .filter(|&[h, m]| h <= 23 && m <= 59)
@@ -889,7 +908,7 @@ fn calendar_time(
     };
     let text =
         format!("{year:04}-{month:02}-{day:02}T{hour:02}:{minute:02}:00-{offset_hours:02}:00");
-    UnixTime::parse(&text).map_err(|e| error(format!("DATE (MM/DD/YYYY) `{}`: {e:#}", shown(d))))
+    UnixTime::parse(&text).map_err(|e| error(format!("DATE ({layout}) `{}`: {e:#}", shown(d))))
 }
 
 /// The time `hhmm` ([`hours_minutes`]) of day `day` (1 = 1 January) of `year` (1-2999, as the
@@ -1465,13 +1484,34 @@ mod tests {
         )
         .expect_err("zone");
         assert!(
-            e.contains("line 1: the MIDC header") && e.contains("after DATE (MM/DD/YYYY)"),
+            e.contains("line 1: the MIDC header") && e.contains("after DATE"),
+            "{e}"
+        );
+        // BMS's download: the year first, and a tilted plane's column before the horizontal's.
+        let rows = parse_as(
+            "DATE (YYYY/MM/DD),MST,Global 40-South CMP11 [W/m^2],Global CMP22 (vent/cor) [W/m^2],Direct NIP [W/m^2],Diffuse CM22-1 (vent/cor) [W/m^2]\n2022/01/20,12:00,700,500,900,60\n",
+            MeasurementFormat::Midc,
+        )
+        .expect("MIDC BMS download");
+        assert_eq!(rows[0].unix.rfc3339(), "2022-01-20T19:00:00Z");
+        assert!(
+            matches!(rows[0].measurement, Measurement::Irradiance { global, diffuse } if global == 500.0 && diffuse == 60.0),
+            "{:?}",
+            rows[0].measurement
+        );
+        let e = parse_as(
+            "DATE (YYYY/MM/DD),MST,Global PSP [W/m^2]\n01/20/2022,12:00,5\n",
+            MeasurementFormat::Midc,
+        )
+        .expect_err("the other order");
+        assert!(
+            e.contains("DATE (YYYY/MM/DD) `01/20/2022`: expected YYYY/MM/DD"),
             "{e}"
         );
         let e = parse_as("Date,MST,Global PSP [W/m^2]\n", MeasurementFormat::Midc)
             .expect_err("no date");
         assert!(
-            e.contains("neither a DATE (MM/DD/YYYY) nor a Year column"),
+            e.contains("has no DATE (MM/DD/YYYY), DATE (YYYY/MM/DD) or Year column"),
             "{e}"
         );
     }

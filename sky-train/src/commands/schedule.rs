@@ -46,9 +46,9 @@ pub struct ScheduleArgs {
     /// The layout of --measurements, each as the network delivers it and optionally
     /// gzip-compressed: csv (the header above), surfrad (a NOAA SURFRAD daily file: GHI
     /// dw_solar, DHI diffuse, rows with a bad flag or missing GHI skipped), midc (an NREL MIDC
-    /// file, raw data or the web page's download: Year and DOY, or DATE (MM/DD/YYYY), then a
-    /// time column named by its time zone; the first Global... and Diffuse... columns in
-    /// W/m^2), srml (a University of Oregon SRML archival file: PST, the
+    /// file, raw data or the web page's download: Year and DOY, or DATE (MM/DD/YYYY or
+    /// YYYY/MM/DD), then a time column named by its time zone; the first horizontal Global...
+    /// and Diffuse... columns in W/m^2), srml (a University of Oregon SRML archival file: PST, the
     /// time at the interval's end, elements 100x GHI and 300x DHI, flag 99 missing) or bsrn (a
     /// BSRN station-to-archive month: the basic measurements' record, UTC). In the stations'
     /// formats a diffuse above the global by more than max(10 W/m2, 5 %) is set aside (the
