@@ -876,14 +876,15 @@ fn calendar_time(
     use crate::csv_input::shown;
     let field = |i: usize| fields.get(i).copied().unwrap_or("");
     let (d, t) = (field(date), field(time));
+    // Digits only, each part as wide as its field: a year of four, the others of one or two.
     let parts = |text: &str, separator: char, widths: &[usize]| -> Option<Vec<u32>> {
         let parts: Vec<&str> = text.split(separator).collect();
-        (parts.len() == widths.len()
-            && parts
-                .iter()
-                .zip(widths)
-                .all(|(p, &w)| (1..=w).contains(&p.len()) && p.bytes().all(|b| b.is_ascii_digit())))
-        .then(|| parts.iter().filter_map(|p| p.parse().ok()).collect())
+        let fits = |p: &str, w: usize| {
+            let width = if w == 4 { 4..=4 } else { 1..=w };
+            width.contains(&p.len()) && p.bytes().all(|b| b.is_ascii_digit())
+        };
+        (parts.len() == widths.len() && parts.iter().zip(widths).all(|(p, &w)| fits(p, w)))
+            .then(|| parts.iter().filter_map(|p| p.parse().ok()).collect())
     };
     let (layout, widths) = if year_first {
         ("YYYY/MM/DD", [4, 2, 2])
@@ -1460,6 +1461,10 @@ mod tests {
             (
                 "02/30/2018,00:00,5,0,3",
                 "line 2: DATE (MM/DD/YYYY) `02/30/2018`",
+            ),
+            (
+                "10/14/18,00:00,5,0,3",
+                "line 2: DATE (MM/DD/YYYY) `10/14/18`: expected MM/DD/YYYY",
             ),
             (
                 "13/01/2018,00:00,5,0,3",
