@@ -1,6 +1,7 @@
 //! Any bytes as a measurement file (`schedule --measurements`) in any of its formats (CSV,
 //! SURFRAD, MIDC, SRML, BSRN; the first byte chooses, modulo 5: the seeds start with `U`, CSV,
-//! `D`, SRML, or `E`, BSRN): the rows handed on are finite and in strictly
+//! `G`, SURFRAD, `H`, MIDC (its raw data and its web download), `D`, SRML, or `E`, BSRN): the
+//! rows handed on are finite and in strictly
 //! increasing time, or the error is one line naming the file; the controller step that each
 //! row drives (as `schedule` runs it) never panics, and a step it accepts is finite.
 #![no_main]
