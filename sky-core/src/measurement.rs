@@ -39,7 +39,7 @@ use crate::solar;
 ///   Alamosa record of 1 January 2016), counts as equal to the global; above that it is
 ///   [`SkyError::OutOfRange`] naming the diffuse;
 /// * a diffuse of 0 with a global above 0 is used as an all-diffuse reading when the sun is down
-///   or the global is at most [`THERMAL_OFFSET_LIMIT`] (a shaded sensor's offset at night and
+///   or the global is at most [`ZERO_DIFFUSE_MAX_GLOBAL`] (a shaded sensor's offset at night and
 ///   dawn); with the sun up and a larger global it is [`SkyError::OutOfRange`] naming the
 ///   diffuse as given (a sun without a sky is a shading or wiring fault);
 /// * a global above [`MAX_CLEARNESS_INDEX`] times the extraterrestrial horizontal irradiance
@@ -149,6 +149,11 @@ pub const THERMAL_OFFSET_LIMIT: f32 = 20.0;
 /// The same for a lux sensor, lx: [`THERMAL_OFFSET_LIMIT`] at the first-guess efficacy of
 /// 110 lm/W, so that both kinds of reading follow one rule.
 pub const THERMAL_OFFSET_LIMIT_LUX: f32 = THERMAL_OFFSET_LIMIT * FIRST_EFFICACY;
+
+/// The largest global reading, W/m², with which a diffuse of 0 is read as all diffuse while the
+/// sun is up (a shaded sensor's offset at dawn; [`Measurement`]); above it such a reading is
+/// refused.
+pub const ZERO_DIFFUSE_MAX_GLOBAL: f32 = 10.0;
 
 /// A diffuse reading above the global by at most this much, W/m², counts as the global
 /// ([`Measurement`]): two sensors' offsets and cosine errors near the horizon, up to 5.9 W/m² in
@@ -302,7 +307,7 @@ impl Measurement {
                 check_range("global irradiance [W/m²]", g, 0.0, limit)?;
                 let mut d = diffuse_within_global(d, g, diffuse)?;
                 if d == 0.0 && g > 0.0 {
-                    if up && g > THERMAL_OFFSET_LIMIT {
+                    if up && g > ZERO_DIFFUSE_MAX_GLOBAL {
                         return Err(SkyError::OutOfRange {
                             parameter: "diffuse irradiance [W/m²]",
                             value: diffuse,

@@ -625,16 +625,18 @@ impl Layout {
             }
         };
         // A horizontal irradiance: not a standard deviation, a tilted plane (BMS's `Global
-        // 40-South CMP11`) or an ultraviolet band.
+        // 40-South CMP11`) or an ultraviolet band, by the words of its name.
+        let excluded = [
+            "stdev", "std", "north", "south", "east", "west", "tilt", "tilted", "poa", "uv", "uva",
+            "uvb",
+        ];
         let irradiance = |start: &str| {
             columns.iter().position(|c| {
                 c.starts_with(start)
                     && c.contains("[w/m^2]")
-                    && ![
-                        "stdev", "std dev", "north", "south", "east", "west", "tilt", "poa", "uv",
-                    ]
-                    .iter()
-                    .any(|w| c.contains(w))
+                    && !c
+                        .split(|ch: char| !ch.is_ascii_alphanumeric())
+                        .any(|word| excluded.contains(&word))
             })
         };
         let ghi = irradiance("global")
@@ -874,31 +876,38 @@ fn calendar_time(
     error: &dyn Fn(String) -> ParamError,
 ) -> Result<UnixTime, ParamError> {
     use crate::csv_input::shown;
-    let field = |i: usize| fields.get(i).copied().unwrap_or("");
-    let (d, t) = (field(date), field(time));
-    // Digits only, each part as wide as its field: a year of four, the others of one or two.
-    let parts = |text: &str, separator: char, widths: &[usize]| -> Option<Vec<u32>> {
+    let (layout, widths) = if year_first {
+        ("YYYY/MM/DD", [(4, 4), (1, 2), (1, 2)])
+    } else {
+        ("MM/DD/YYYY", [(1, 2), (1, 2), (4, 4)])
+    };
+    let (Some(d), Some(t)) = (fields.get(date), fields.get(time)) else {
+        return Err(error(format!("no DATE ({layout}) and time fields")));
+    };
+    // Digits only, each part within its widths.
+    let parts = |text: &str, separator: char, widths: &[(usize, usize)]| -> Option<Vec<u32>> {
         let parts: Vec<&str> = text.split(separator).collect();
-        let fits = |p: &str, w: usize| {
-            let width = if w == 4 { 4..=4 } else { 1..=w };
-            width.contains(&p.len()) && p.bytes().all(|b| b.is_ascii_digit())
+        let fits = |p: &str, &(least, most): &(usize, usize)| {
+            (least..=most).contains(&p.len()) && p.bytes().all(|b| b.is_ascii_digit())
         };
-        (parts.len() == widths.len() && parts.iter().zip(widths).all(|(p, &w)| fits(p, w)))
+        (parts.len() == widths.len() && parts.iter().zip(widths).all(|(p, w)| fits(p, w)))
             .then(|| parts.iter().filter_map(|p| p.parse().ok()).collect())
     };
-    let (layout, widths) = if year_first {
-        ("YYYY/MM/DD", [4, 2, 2])
-    } else {
-        ("MM/DD/YYYY", [2, 2, 4])
-    };
-    let Some([a, b, c]) = parts(d, '/', &widths).and_then(|v| <[u32; 3]>::try_from(v).ok()) else {
+    let date = parts(d, '/', &widths)
+        .and_then(|v| <[u32; 3]>::try_from(v).ok())
+        .map(|[a, b, c]| if year_first { (a, b, c) } else { (c, a, b) })
+        .filter(|&(year, month, day)| {
+            (1..=2999).contains(&year)
+                && (1..=12).contains(&month)
+                && (1..=days_in_month(year, month)).contains(&day)
+        });
+    let Some((year, month, day)) = date else {
         return Err(error(format!(
-            "DATE ({layout}) `{}`: expected {layout}",
+            "DATE ({layout}) `{}`: expected a date {layout} (years 1-2999)",
             shown(d)
         )));
     };
-    let (year, month, day) = if year_first { (a, b, c) } else { (c, a, b) };
-    let Some([hour, minute]) = parts(t, ':', &[2, 2])
+    let Some([hour, minute]) = parts(t, ':', &[(1, 2), (2, 2)])
         .and_then(|v| <[u32; 2]>::try_from(v).ok())
         .filter(|&[h, m]| h <= 23 && m <= 59)
     else {
@@ -907,9 +916,21 @@ fn calendar_time(
             shown(t)
         )));
     };
-    let text =
-        format!("{year:04}-{month:02}-{day:02}T{hour:02}:{minute:02}:00-{offset_hours:02}:00");
-    UnixTime::parse(&text).map_err(|e| error(format!("DATE ({layout}) `{}`: {e:#}", shown(d))))
+    #[allow(clippy::cast_possible_wrap)] // years up to 2999
+    let local = UnixTime::from_civil(year as i32, month, day, hour, minute, 0.0);
+    Ok(UnixTime(local.0 + f64::from(offset_hours * 3600)))
+}
+
+/// The days of `month` (1-12) in `year` (Gregorian).
+fn days_in_month(year: u32, month: u32) -> u32 {
+    match month {
+        2 if year.is_multiple_of(4) && (!year.is_multiple_of(100) || year.is_multiple_of(400)) => {
+            29
+        }
+        2 => 28,
+        4 | 6 | 9 | 11 => 30,
+        _ => 31,
+    }
 }
 
 /// The time `hhmm` ([`hours_minutes`]) of day `day` (1 = 1 January) of `year` (1-2999, as the
@@ -1098,11 +1119,14 @@ fn calibration_for(
 /// one), and the learned state is written to `calibration.state` at the end. With
 /// `global_only` a row's diffuse is left out and its global split by the settings' separation
 /// model ([`MeasuredRow::global_alone`]: the split of a GHI-only reading, to compare with the
-/// file's diffuse).
+/// file's diffuse). In the stations' formats a row whose global is above the physical limit
+/// (a spike, or a clock off near sunrise or sunset) is skipped in both passes, with a note on
+/// standard error; more than 10 such rows that are also more than 1 % of the file refuse it.
 ///
 /// # Errors
-/// Bad parameters or a bad reading as a [`ParamError`] naming the file's line; a state file
-/// that cannot be read or is refused; a failed write.
+/// Bad parameters or a bad reading as a [`ParamError`] naming the file's line; too many rows
+/// above the physical limit in a station's file; a state file that cannot be read or is
+/// refused; a failed write.
 pub fn schedule_measured(
     config: &ScheduleConfig,
     file: &Path,
@@ -1173,14 +1197,14 @@ pub fn schedule_measured(
         // file's, and a schedule from them would follow the wrong sun.
         if n > MAX_ABOVE_LIMIT_ROWS.max(rows / 100) {
             return Err(ParamError(format!(
-                "--measurements {}: {n} of {rows} rows have the global above {} times the extraterrestrial horizontal irradiance (first on line {first}: {value} W/m2), more than 1 % or {MAX_ABOVE_LIMIT_ROWS}: is the file's clock in the time zone its header or format names, and are --lat/--lon/--elevation the station's?",
+                "--measurements {}: {n} of {rows} rows have the global above {} times the extraterrestrial horizontal irradiance (first on line {first}: {value} W/m2), more than {MAX_ABOVE_LIMIT_ROWS} and more than 1 % of the rows: the file's clock not in the time zone its header or format names, --lat/--lon/--elevation not the station's, or a faulty sensor",
                 file.display(),
                 sky_core::decomposition::MAX_CLEARNESS_INDEX
             ))
             .into());
         }
         eprintln!(
-            "note: --measurements {}: {n} row(s) with the global above {} times the extraterrestrial horizontal irradiance, which no sky gives (first on line {first}: {value} W/m2; a spike, or the file's clock off): skipped, as flagged readings are",
+            "note: --measurements {}: {n} row(s) with the global above {} times the extraterrestrial horizontal irradiance, which no sky gives (first on line {first}: {value} W/m2; a spike, or the file's clock off near sunrise or sunset): skipped, as flagged readings are",
             file.display(),
             sky_core::decomposition::MAX_CLEARNESS_INDEX
         );
@@ -1456,15 +1480,21 @@ mod tests {
         for (row, needle) in [
             (
                 "2018-10-14,00:00,5,0,3",
-                "line 2: DATE (MM/DD/YYYY) `2018-10-14`: expected MM/DD/YYYY",
+                "line 2: DATE (MM/DD/YYYY) `2018-10-14`: expected a date MM/DD/YYYY",
             ),
             (
                 "02/30/2018,00:00,5,0,3",
-                "line 2: DATE (MM/DD/YYYY) `02/30/2018`",
+                "line 2: DATE (MM/DD/YYYY) `02/30/2018`: expected a date MM/DD/YYYY (years 1-2999)",
             ),
             (
+                "02/29/2019,00:00,5,0,3",
+                "line 2: DATE (MM/DD/YYYY) `02/29/2019`",
+            ),
+            ("10/14/2018,6:5,5,0,3", "line 2: the time `6:5`"),
+            ("10/14/2018", "line 2: no DATE (MM/DD/YYYY) and time fields"),
+            (
                 "10/14/18,00:00,5,0,3",
-                "line 2: DATE (MM/DD/YYYY) `10/14/18`: expected MM/DD/YYYY",
+                "line 2: DATE (MM/DD/YYYY) `10/14/18`: expected a date MM/DD/YYYY",
             ),
             (
                 "13/01/2018,00:00,5,0,3",
@@ -1510,7 +1540,7 @@ mod tests {
         )
         .expect_err("the other order");
         assert!(
-            e.contains("DATE (YYYY/MM/DD) `01/20/2022`: expected YYYY/MM/DD"),
+            e.contains("DATE (YYYY/MM/DD) `01/20/2022`: expected a date YYYY/MM/DD"),
             "{e}"
         );
         let e = parse_as("Date,MST,Global PSP [W/m^2]\n", MeasurementFormat::Midc)

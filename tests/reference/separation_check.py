@@ -142,7 +142,7 @@ def read(path):
 def month(binary, path, every):
     raw = read(path)
     raw = raw.dropna(subset=["GHI", "DHI", "DNI"])
-    raw = raw[raw.GHI > -10]
+    raw = raw[raw.GHI > -20]
     location = pvlib.location.Location(LAT, LON, altitude=ELEV)
     # Each day's sky from every minute.
     times = pd.DatetimeIndex(raw.index).tz_localize("UTC")

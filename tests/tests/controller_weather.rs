@@ -504,6 +504,48 @@ fn bad_readings_have_named_errors_or_documented_clamps() {
             ..
         })
     ));
+    // The limits' edges, each side (the published magnitudes they stand for are in the
+    // constants' docs): a thermal offset down to -20 W/m² (-2,200 lx) is 0, below it named;
+    // a diffuse of 0 under a global of up to 10 W/m² with the sun up is all diffuse, above it
+    // named.
+    for (m, zero) in [
+        (Measurement::GlobalIrradiance(-15.0), true),
+        (Measurement::GlobalIrradiance(-19.9), true),
+        (Measurement::GlobalIrradiance(-20.5), false),
+        (Measurement::GlobalIlluminance(-2_150.0), true),
+        (Measurement::GlobalIlluminance(-2_250.0), false),
+    ] {
+        match err(&noon, m) {
+            Ok(s) => assert!(zero && s.illuminance.y == 0.0, "{m:?}"),
+            Err(e) => assert!(
+                !zero && matches!(e, SkyError::OutOfRange { .. }),
+                "{m:?}: {e:?}"
+            ),
+        }
+    }
+    let dawn_offset = err(
+        &noon,
+        Measurement::Irradiance {
+            global: 9.5,
+            diffuse: 0.0,
+        },
+    )
+    .expect("a shaded sensor's offset");
+    let w = dawn_offset.weather.expect("weather");
+    assert_eq!(w.diffuse_irradiance, w.global_irradiance);
+    assert!(matches!(
+        err(
+            &noon,
+            Measurement::Irradiance {
+                global: 15.0,
+                diffuse: 0.0
+            }
+        ),
+        Err(SkyError::OutOfRange {
+            parameter: "diffuse irradiance [W/m²]",
+            ..
+        })
+    ));
     // A reading at night: used as it is, no sky type.
     let s = err(&night, Measurement::GlobalIlluminance(5.0)).expect("night");
     assert_eq!(s.illuminance.y, 5.0);

@@ -793,33 +793,45 @@ fn a_midc_web_download_runs() {
     assert!(split > 60, "{split}");
 }
 
-/// A station file's global above what any sky gives (a spike of 2,500 W/m² after sunrise in
-/// the MIDC download above) is skipped like a flagged reading, the rest run; the same reading
-/// in the project's CSV is refused; and a file whose clock is not the one its header names (MST
-/// read as EST: two hours early, the morning's light before sunrise) is refused, naming the
-/// time zone, rather than scheduled against the wrong sun.
+/// A station file's global above what any sky gives (spikes of 2,500 W/m² in the MIDC download
+/// above) is skipped like a flagged reading and the rest run, up to 10 such rows in a file of
+/// 240 (more than 10 and more than 1 % refuse it); the same reading in the project's CSV is
+/// refused; and a file whose clock is not the one its header names (MST read as EST: two hours
+/// early, the morning's light before sunrise) is refused, naming the time zone, rather than
+/// scheduled against the wrong sun.
 #[test]
 fn a_station_file_spike_is_skipped_and_a_wrong_clock_refused() {
     let raw = std::fs::read_to_string(station_file("midc-web-20181014-part.txt")).expect("MIDC");
     let dir = tempfile::tempdir().expect("temp dir");
-    let spiked: String = raw
-        .lines()
-        .map(|l| {
-            let mut f: Vec<&str> = l.split(',').collect();
-            if f[1] == "07:28" {
-                f[2] = "2500";
-            }
-            f.join(",") + "\n"
-        })
-        .collect();
+    // The file with spikes at the minutes `at`.
+    let spiked = |at: &[&str]| -> String {
+        raw.lines()
+            .map(|l| {
+                let mut f: Vec<&str> = l.split(',').collect();
+                if at.contains(&f[1]) {
+                    f[2] = "2500";
+                }
+                f.join(",") + "\n"
+            })
+            .collect()
+    };
     let file = dir.path().join("spike.txt");
-    std::fs::write(&file, &spiked).expect("write");
+    std::fs::write(&file, spiked(&["07:28"])).expect("write");
     let out = schedule_station(file.to_str().expect("UTF-8"), NWTC_M2, "midc", &[]);
     assert_finite_fields(&out);
     let lines = rows_of(&out);
     assert_eq!(lines.len(), raw.lines().count() - 2, "one row skipped");
     assert!(lines.iter().all(|f| f["utc"] != "2018-10-14T14:28:00Z"));
     assert!(lines.iter().any(|f| f["utc"] == "2018-10-14T14:27:00Z"));
+    let minutes: Vec<String> = (0..11).map(|i| format!("05:{:02}", 10 + 3 * i)).collect();
+    let minutes: Vec<&str> = minutes.iter().map(String::as_str).collect();
+    std::fs::write(&file, spiked(&minutes[..10])).expect("write");
+    let out = schedule_station(file.to_str().expect("UTF-8"), NWTC_M2, "midc", &[]);
+    assert_eq!(
+        rows_of(&out).len(),
+        raw.lines().count() - 11,
+        "ten rows skipped"
+    );
     let csv = dir.path().join("spike.csv");
     std::fs::write(&csv, "utc,ghi_wm2\n2018-10-14T14:28:00Z,2500\n").expect("write");
     let [lat, lon, elevation] = NWTC_M2;
@@ -836,6 +848,15 @@ fn a_station_file_spike_is_skipped_and_a_wrong_clock_refused() {
             path.to_str().expect("UTF-8").to_owned(),
         ]
     };
+    let mut a = args(&file);
+    std::fs::write(&file, spiked(&minutes)).expect("write");
+    a.extend(["--measurements-format".to_owned(), "midc".to_owned()]);
+    let (e, parameter) =
+        run(&a.iter().map(String::as_str).collect::<Vec<_>>(), "").expect_err("eleven spikes");
+    assert!(
+        parameter && e.contains("11 of 240 rows") && e.contains("faulty sensor"),
+        "{e}"
+    );
     let a = args(&csv);
     let (e, parameter) = run(&a.iter().map(String::as_str).collect::<Vec<_>>(), "")
         .expect_err("the CSV's reading above the limit");
@@ -854,6 +875,28 @@ fn a_station_file_spike_is_skipped_and_a_wrong_clock_refused() {
     assert!(
         parameter && e.contains("time zone") && e.contains("of 240 rows"),
         "{e}"
+    );
+    // Read as EST, the minutes before 08:00 MST fall before 13:00 UTC, when the sun at the
+    // site is below the horizon (it rises near 13:15 UTC), where no sky gives more than 1.5
+    // times 1,400 W/m² times 0.065 (the cosine the limit takes at least), 137 W/m²: every such
+    // reading above 140 W/m² is among the rows counted.
+    let night_above: usize = raw
+        .lines()
+        .skip(1)
+        .filter(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            f[1] < "08:00" && num(f[2]) > 140.0
+        })
+        .count();
+    let counted: usize = e
+        .split(" of 240 rows")
+        .next()
+        .and_then(|head| head.rsplit(' ').next())
+        .and_then(|n| n.parse().ok())
+        .expect("the count");
+    assert!(
+        night_above > 10 && counted >= night_above,
+        "{counted} {night_above}"
     );
 }
 

@@ -30,7 +30,9 @@ pub struct ScheduleArgs {
     /// (--measurements-format; the default CSV's header names `utc` (RFC 3339) and `global_lux`
     /// (a lux sensor) or `ghi_wm2` with optional `dhi_wm2` (pyranometers)). Thermal offsets
     /// down to -20 W/m2 (-2200 lx) count as 0, a diffuse up to max(10 W/m2, 5 %) above the
-    /// global as the global; night readings are used. One output row per reading: the sun; the
+    /// global as the global; night readings are used. One output row per reading (in the
+    /// stations' formats a row without a reading, flagged or missing, or with a global above
+    /// what any sky gives, is skipped): the sun; the
     /// light followed (cct_k, duv, horizontal_lux, RGBW, x, y, melanopic_edi_lux: the measured
     /// light with its colour under cloud); ghi_wm2, dhi_wm2, dni_wm2 (the reading and its
     /// split: the file's diffuse, else --decomposition's); global_lux, diffuse_lux, direct_lux (the
