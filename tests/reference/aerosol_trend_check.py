@@ -8,7 +8,8 @@ set-up as `clear_sky_check.py` (its docstring: pvlib 0.16.1, and pvlib 0.10.5's 
 month in /tmp/pvold):
 
     cargo build -p sky-train
-    /tmp/venv/bin/python tests/reference/aerosol_trend_check.py target/debug/sky-train
+    /tmp/venv/bin/python tests/reference/aerosol_trend_check.py target/debug/sky-train \
+        [--lyngby dtu_2016_06.csv ...]
 
 On the clear minutes of `tests/fixtures/clear_minutes.csv` (sun zenith below 80 deg) of BSRN
 Payerne, SURFRAD Alamosa and MIDC UAT Tucson, per clear day (at least 60 such minutes):
@@ -58,10 +59,14 @@ def split_score(g, pressure, ghi_clear=None, dni_clear=None):
     return f"{100 * error.mean() / mean:+6.1f} % / {100 * np.sqrt((error ** 2).mean()) / mean:5.1f} %"
 
 
-def station(exe, data):
+def station(exe, data, minutes=True):
+    """Each clear day of `data` (the readings, and the station's name, latitude, longitude and
+    elevation); with `minutes`, on the fixture's clear minutes of the station."""
     d, (name, lat, lon, elevation, _file, _fmt) = data
-    clear = pd.read_csv(check.ROOT / "tests" / "fixtures" / "clear_minutes.csv")
-    d = d.loc[d.index.intersection(pd.to_datetime(clear[clear.station == name].utc, utc=True))].copy()
+    if minutes:
+        clear = pd.read_csv(check.ROOT / "tests" / "fixtures" / "clear_minutes.csv")
+        d = d.loc[d.index.intersection(pd.to_datetime(clear[clear.station == name].utc, utc=True))]
+    d = d.copy()
     sun = pvlib.location.Location(lat, lon, altitude=elevation).get_solarposition(d.index)
     d["apparent_zenith"], d["zenith"] = sun.apparent_zenith, sun.zenith
     d = d[d.apparent_zenith < 80.0]
@@ -92,8 +97,32 @@ def station(exe, data):
         before = own
 
 
+def lyngby(exe, files):
+    """DTU Lyngby's months (`clear_sky_check.py --lyngby` says where they are): each day with
+    at least 60 of pvlib's clear minutes (sun zenith below 80 deg) that pass a BSRN-style
+    closure (GHI within 8 % of DHI + DNI cos Z), through `station`."""
+    lat, lon, elevation = 55.7906, 12.5251, 50.0
+    location = pvlib.location.Location(lat, lon, altitude=elevation)
+    for f in files:
+        raw = pd.read_csv(f)
+        d = pd.DataFrame({"ghi": raw["GHI"].to_numpy(), "dni": raw["DNI"].to_numpy(), "dhi": raw["DHI"].to_numpy()},
+                         index=pd.to_datetime(raw["Time(utc)"], utc=True))
+        d = d[~d.index.duplicated()].dropna()
+        full = pd.date_range(d.index[0], d.index[-1], freq="1min")
+        g = d.reindex(full)
+        sun = location.get_solarposition(full)
+        cs = location.get_clearsky(full, model="ineichen", solar_position=sun)
+        clear = pvlib.clearsky.detect_clearsky(g.ghi.fillna(0.0), cs["ghi"], window_length=10) & g.ghi.notna()
+        closure = (g.ghi - (g.dhi + g.dni * np.cos(np.radians(sun.zenith)))).abs() <= 0.08 * g.ghi
+        g = g[(clear & closure).to_numpy()]
+        station(exe, (g, ("lyngby", lat, lon, elevation, None, None)), minutes=False)
+
+
 def main():
     exe = sys.argv[1]
+    if sys.argv[2:3] == ["--lyngby"]:
+        lyngby(exe, sys.argv[3:])
+        return
     for data in (check.payerne(), check.surfrad(), check.midc_uat()):
         station(exe, data)
 
