@@ -896,10 +896,11 @@ fn calendar_time(
     let date = parts(d, '/', &widths)
         .and_then(|v| <[u32; 3]>::try_from(v).ok())
         .map(|[a, b, c]| if year_first { (a, b, c) } else { (c, a, b) })
+        .and_then(|(year, month, day)| Some((i32::try_from(year).ok()?, month, day)))
         .filter(|&(year, month, day)| {
-            (1..=2999).contains(&year)
+            (UtcTime::MIN_YEAR..=UtcTime::MAX_YEAR).contains(&year)
                 && (1..=12).contains(&month)
-                && (1..=days_in_month(year, month)).contains(&day)
+                && (1..=sky_core::solar::days_in_month(year, month)).contains(&day)
         });
     let Some((year, month, day)) = date else {
         return Err(error(format!(
@@ -916,21 +917,8 @@ fn calendar_time(
             shown(t)
         )));
     };
-    #[allow(clippy::cast_possible_wrap)] // years up to 2999
-    let local = UnixTime::from_civil(year as i32, month, day, hour, minute, 0.0);
+    let local = UnixTime::from_civil(year, month, day, hour, minute, 0.0);
     Ok(UnixTime(local.0 + f64::from(offset_hours * 3600)))
-}
-
-/// The days of `month` (1-12) in `year` (Gregorian).
-fn days_in_month(year: u32, month: u32) -> u32 {
-    match month {
-        2 if year.is_multiple_of(4) && (!year.is_multiple_of(100) || year.is_multiple_of(400)) => {
-            29
-        }
-        2 => 28,
-        4 | 6 | 9 | 11 => 30,
-        _ => 31,
-    }
 }
 
 /// The time `hhmm` ([`hours_minutes`]) of day `day` (1 = 1 January) of `year` (1-2999, as the
@@ -1161,7 +1149,7 @@ pub fn schedule_measured(
     // In the stations' formats a global above the physical limit is set aside like a flagged
     // reading (its row skipped), in the project's CSV it is refused.
     let station = format != MeasurementFormat::Csv;
-    let skipped = |e: &SkyError| station && above_physical_limit(e);
+    let skipped = |e: &SkyError| station && above_physical_limit(e).is_some();
     let mut history = History::new();
     let mut set_aside: Option<(usize, usize)> = None; // (rows, the first's line)
     let mut too_bright: Option<(usize, usize, f32)> = None; // (rows, the first's line, reading)
@@ -1172,8 +1160,8 @@ pub fn schedule_measured(
         rows += 1;
         match run(r, &mut history) {
             Err(e) if skipped(&e) => {
-                let (n, first, value) =
-                    too_bright.unwrap_or((0, r.line, global_of(&r.measurement)));
+                let value = above_physical_limit(&e).unwrap_or(f32::NAN);
+                let (n, first, value) = too_bright.unwrap_or((0, r.line, value));
                 too_bright = Some((n + 1, first, value));
                 return Ok(());
             }
@@ -1263,20 +1251,15 @@ pub fn schedule_measured(
 /// file is refused, unless 1 % of its rows is more ([`schedule_measured`]).
 const MAX_ABOVE_LIMIT_ROWS: usize = 10;
 
-/// Whether `e` refuses a global reading above the physical limit (more than
+/// The global reading, W/m², that `e` refuses for being above the physical limit (more than
 /// [`sky_core::decomposition::MAX_CLEARNESS_INDEX`] times the extraterrestrial horizontal
-/// irradiance), not one below the thermal-offset limit or any other error.
-fn above_physical_limit(e: &SkyError) -> bool {
-    matches!(e, SkyError::OutOfRange { parameter, value, .. }
-        if parameter.starts_with("global irradiance") && *value > 0.0)
-}
-
-/// The global irradiance of a station's reading, W/m² (0 for a lux reading, which the stations'
-/// formats do not give).
-fn global_of(m: &Measurement) -> f32 {
-    match *m {
-        Measurement::GlobalIrradiance(g) | Measurement::Irradiance { global: g, .. } => g,
-        Measurement::GlobalIlluminance(_) => 0.0,
+/// irradiance); `None` for one below the thermal-offset limit or any other error.
+fn above_physical_limit(e: &SkyError) -> Option<f32> {
+    match *e {
+        SkyError::OutOfRange {
+            parameter, value, ..
+        } if parameter.starts_with("global irradiance") && value > 0.0 => Some(value),
+        _ => None,
     }
 }
 

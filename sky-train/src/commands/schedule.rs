@@ -56,8 +56,8 @@ pub struct ScheduleArgs {
     /// formats a diffuse above the global by more than max(10 W/m2, 5 %) is set aside (the
     /// global split by --decomposition; a note on stderr counts such rows), and a row whose
     /// global is above 1.5 times the extraterrestrial horizontal irradiance is skipped (a note
-    /// counts them; more than 10 such rows and 1 % of the file is refused: a clock or site that
-    /// is not the station's).
+    /// counts them; more than 10 such rows that are also more than 1 % of the file refuse it: a
+    /// clock or site that is not the station's, or a faulty sensor).
     #[arg(long, value_enum, value_name = "FORMAT", default_value_t = FormatArg::Csv, requires = "measurements")]
     pub measurements_format: FormatArg,
     /// Read only the global of --measurements, leaving out its diffuse: every row's global is
