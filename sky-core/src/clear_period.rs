@@ -265,7 +265,7 @@ impl ClearSkyDetector {
         self.head = (self.head + 1) % WINDOW_CAPACITY;
         self.run = self.run.saturating_add(1);
         self.unmarked = (self.unmarked + 1).min(self.window);
-        if self.run < self.window || !self.window_is_clear() {
+        if self.run < self.window || !self.criteria_met(1.0) {
             return Verdict::default();
         }
         let newly_clear = self.unmarked;
@@ -276,16 +276,43 @@ impl ClearSkyDetector {
         }
     }
 
-    /// The five criteria over the newest `window` readings (module docs).
+    /// Whether the newest window is clear against the clear sky scaled by its own
+    /// least-squares factor α = Σ m c / Σ c² (Reno & Hansen's α, as pvlib refits it, but fitted
+    /// to this window alone): `Some(α)` when every criterion holds against α c, `None` when not,
+    /// or before the run fills a window. A smooth overcast also passes at a small α, so only an
+    /// α above what a clear sky can give tells something (a sensor reading high:
+    /// [`crate::self_calibration`]).
+    #[must_use]
+    pub fn fitted_clear_window(&self) -> Option<f32> {
+        if self.run < self.window {
+            return None;
+        }
+        let (mut mc, mut cc) = (0.0f32, 0.0f32);
+        for k in 0..self.window {
+            let (m, c) = self.at(k);
+            mc += m * c;
+            cc += c * c;
+        }
+        let alpha = mc / cc;
+        (alpha.is_finite() && alpha > 0.0 && self.criteria_met(alpha)).then_some(alpha)
+    }
+
+    /// The `k`-th of the newest `window` readings, oldest first: (measured, clear sky).
+    fn at(&self, k: usize) -> (f32, f32) {
+        let i = (self.head + WINDOW_CAPACITY - self.window + k) % WINDOW_CAPACITY;
+        (self.measured[i], self.clear[i])
+    }
+
+    /// The five criteria over the newest `window` readings (module docs), the clear sky
+    /// scaled by `alpha`.
     #[allow(clippy::cast_precision_loss)] // at most 64 readings
-    fn window_is_clear(&self) -> bool {
+    fn criteria_met(&self, alpha: f32) -> bool {
         let c = &self.criteria;
         let n = self.window;
         let dt = self.interval_seconds as f32 / 60.0;
-        // Oldest first.
         let at = |k: usize| {
-            let i = (self.head + WINDOW_CAPACITY - n + k) % WINDOW_CAPACITY;
-            (self.measured[i], self.clear[i])
+            let (m, cs) = self.at(k);
+            (m, alpha * cs)
         };
         let (mut sum_m, mut sum_c) = (0.0f32, 0.0f32);
         let (mut max_m, mut max_c) = (f32::NEG_INFINITY, f32::NEG_INFINITY);
@@ -325,5 +352,48 @@ impl ClearSkyDetector {
             && line < c.upper_line_length
             && nstd < c.var_diff
             && max_change < c.slope_dev
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A rising clear sky, W/m², at minute `i`.
+    fn clear(i: i64) -> f32 {
+        #[allow(clippy::cast_precision_loss)]
+        let t = i as f32;
+        500.0 + 3.0 * t
+    }
+
+    #[test]
+    fn a_window_is_clear_at_its_own_factor() {
+        let mut d = ClearSkyDetector::new(Criteria::RENO_HANSEN_2016, 60).expect("detector");
+        for i in 0..30 {
+            let v = d.push(60 * i, 1.4 * clear(i), clear(i));
+            // 40 % above the clear sky: 200 W/m² and more from it, never clear at the factor 1.
+            assert!(!v.window_clear);
+            let fitted = d.fitted_clear_window();
+            if i < 9 {
+                // The window (10 readings) is not full yet.
+                assert_eq!(fitted, None);
+            } else {
+                let alpha = fitted.expect("clear at its own factor");
+                assert!((alpha - 1.4).abs() < 1e-5, "{alpha}");
+            }
+        }
+        // A cloud's dip in the window: not clear at any factor.
+        let mut d = ClearSkyDetector::new(Criteria::RENO_HANSEN_2016, 60).expect("detector");
+        for i in 0..10 {
+            let dip = if i == 5 { 0.5 } else { 1.0 };
+            let _ = d.push(60 * i, 1.4 * dip * clear(i), clear(i));
+        }
+        assert_eq!(d.fitted_clear_window(), None);
+        // A clear sky of 0 has no factor.
+        let mut d = ClearSkyDetector::new(Criteria::RENO_HANSEN_2016, 60).expect("detector");
+        for i in 0..10 {
+            let _ = d.push(60 * i, 10.0, 0.0);
+        }
+        assert_eq!(d.fitted_clear_window(), None);
     }
 }

@@ -46,14 +46,25 @@
 //! within the bounds, and the status says so until the level returns or the state is
 //! commissioned anew ([`SelfCalibration::recommission`]).
 //!
+//! **Bright days.** A sensor reading far above the clear sky may never be found clear at all
+//! (the detector's mean and maximum criteria are absolute, 75 W/m²), so it would learn nothing
+//! and say nothing. Each window the detector does not find clear, with the sun in the bands, is
+//! therefore judged once more against the clear sky scaled by the window's own least-squares
+//! factor ([`crate::clear_period::ClearSkyDetector::fitted_clear_window`]). A day that is not a
+//! clear day but has [`MIN_CLEAR_MINUTES`] of readings clear only at a factor above the upper
+//! bound is a *bright* day: [`Status::SensorSuspect`] until a clear day within the detector's
+//! reach or a recommissioning; the flag is kept in the state. No sky is smooth for an hour
+//! and brighter than the brightest clear sky the bounds allow (a sensor with a wrong
+//! sensitivity constant is); a smooth overcast is darker, so the lower side has no such test.
+//!
 //! **What it cannot tell.** One sensor cannot tell a dirty or miscalibrated sensor from a site
 //! whose clear sky is that much dimmer or brighter than the model: within the bounds it learns
 //! either as the site's level (the clear-sky index then reads 1 on clear days, which is what a
-//! controller classifying cloud needs, while the absolute level stays the sensor's). The bounds
-//! should be as narrow as the clear sky given is good: a clear sky fitted to the site allows a
-//! narrow range, in which a +25 % calibration error is flagged; the default clear sky (one
-//! turbid aerosol depth everywhere) needs the wide default. A shaded part of the day (a clipped
-//! morning) is not a clear period for the detector and does not enter the level.
+//! controller classifying cloud needs, while the absolute level stays the sensor's). Narrower
+//! bounds would not help: even against the site's climatology (`sky-train site`), a clean
+//! sensor's band levels span 0.85 to above 1.2 over a year at DTU Lyngby (`docs/weather.md`),
+//! as far apart as a +25 % calibration error. A shaded part of the day (a clipped morning) is
+//! not a clear period for the detector and does not enter the level.
 
 use crate::clear_period::{ClearSkyDetector, Criteria, Verdict};
 use crate::error::SkyError;
@@ -142,8 +153,9 @@ pub enum Status {
     /// The level has moved more than [`Bounds::drift`] from the commissioned one (soiling, an
     /// obstruction, a recalibration); the factor follows it within the bounds.
     Drifted,
-    /// The level is beyond the bounds: the factor is held at the bound; the sensor is shaded,
-    /// covered, miscalibrated or not a global horizontal sensor.
+    /// The level is beyond the bounds (the factor is held at the bound), or the last clear
+    /// day was clear only above the bounds (a *bright* day, module docs): the sensor is
+    /// shaded, covered, miscalibrated or not a global horizontal sensor.
     SensorSuspect,
 }
 
@@ -305,6 +317,11 @@ pub struct SelfCalibration {
     day_all: Band,
     /// The clear readings of all bands before the first clear day.
     all: Band,
+    /// Readings today whose window was clear only against the clear sky scaled above the
+    /// bounds ([`ClearSkyDetector::fitted_clear_window`]).
+    bright_readings: u32,
+    /// The last day with a clear period was a bright day (kept in the state).
+    bright: bool,
 }
 
 /// Seconds of `time` since 1970-01-01 00:00 UTC (proleptic Gregorian; the seconds rounded down).
@@ -368,6 +385,8 @@ impl SelfCalibration {
             day: None,
             day_all: Band::EMPTY,
             all: Band::EMPTY,
+            bright_readings: 0,
+            bright: false,
         })
     }
 
@@ -441,6 +460,9 @@ impl SelfCalibration {
     /// The status (module docs).
     #[must_use]
     pub fn status(&self) -> Status {
+        if self.bright {
+            return Status::SensorSuspect;
+        }
         let Some(level) = self.level() else {
             return Status::Learning;
         };
@@ -461,9 +483,10 @@ impl SelfCalibration {
     }
 
     /// Takes the current level as the commissioned one (after a cleaning or a recalibration
-    /// has been checked); nothing before the first clear day.
+    /// has been checked; nothing before the first clear day), and forgets a bright day.
     pub fn recommission(&mut self) {
         self.commissioned = self.level();
+        self.bright = false;
     }
 
     /// Adds one reading (module docs) and returns the factor, the detector's verdict and the
@@ -504,6 +527,16 @@ impl SelfCalibration {
                         }
                     }
                 }
+            }
+            // Clear only above the bounds: a smooth day brighter than any clear sky the bounds
+            // allow (an overcast can be smooth, never that bright).
+            if !verdict.window_clear
+                && self
+                    .detector
+                    .fitted_clear_window()
+                    .is_some_and(|alpha| alpha * working > self.bounds.max)
+            {
+                self.bright_readings = self.bright_readings.saturating_add(1);
             }
             let b = &mut self.bands[band];
             if b.days == 0 && b.count >= 3 {
@@ -548,6 +581,7 @@ impl SelfCalibration {
         for b in &mut self.bands {
             b.clear_day();
         }
+        self.bright_readings = 0;
         self.day_all.clear_day();
         self.detector.reset();
     }
@@ -556,7 +590,13 @@ impl SelfCalibration {
     fn close_day(&mut self) {
         let minutes =
             |count: u32| u64::from(count) * u64::from(self.detector.interval_seconds()) / 60;
-        if minutes(self.day_all.count) >= u64::from(MIN_CLEAR_MINUTES) {
+        let clear_day = minutes(self.day_all.count) >= u64::from(MIN_CLEAR_MINUTES);
+        if clear_day {
+            self.bright = false;
+        } else if minutes(self.bright_readings) >= u64::from(MIN_CLEAR_MINUTES) {
+            self.bright = true;
+        }
+        if clear_day {
             for b in &mut self.bands {
                 if minutes(b.count) >= u64::from(MIN_BAND_MINUTES) {
                     let m = b.median();
@@ -573,7 +613,8 @@ impl SelfCalibration {
 
     /// The learned state in [`STATE_BYTES`] bytes, little-endian: magic 0x5C, version
     /// [`STATE_VERSION`], the bands' numbers of clear-day medians kept (2 bits each, the
-    /// lowest band in the lowest bits), a flag byte (bit 0: commissioned), the clear days
+    /// lowest band in the lowest bits), a flag byte (bit 0: commissioned; bit 1: the last day
+    /// with a clear period was a bright day), the clear days
     /// counted (u16), the commissioned level, the four bands' three medians each (each ln ×
     /// 8192 as i16), and a CRC-16/CCITT-FALSE of the first 34 bytes. The day in progress is not
     /// kept.
@@ -588,7 +629,7 @@ impl SelfCalibration {
                 b[2] |= (band.days as u8) << (2 * i);
             }
         }
-        b[3] = u8::from(self.commissioned.is_some());
+        b[3] = u8::from(self.commissioned.is_some()) | u8::from(self.bright) << 1;
         b[4..6].copy_from_slice(&self.clear_days.to_le_bytes());
         let q = |l: f32| -> [u8; 2] {
             #[allow(clippy::cast_possible_truncation)] // clamped to i16
@@ -663,12 +704,12 @@ impl SelfCalibration {
                 f32::from(crc),
             ));
         }
-        if bytes[3] > 1 {
+        if bytes[3] > 3 {
             return Err(refuse(
                 "calibration state flags",
                 f32::from(bytes[3]),
                 0.0,
-                1.0,
+                3.0,
             ));
         }
         let (lo, hi) = ln_range();
@@ -693,7 +734,12 @@ impl SelfCalibration {
             }
         }
         s.clear_days = u16::from_le_bytes([bytes[4], bytes[5]]);
-        s.commissioned = if bytes[3] == 1 { Some(level(6)?) } else { None };
+        s.commissioned = if bytes[3] & 1 == 1 {
+            Some(level(6)?)
+        } else {
+            None
+        };
+        s.bright = bytes[3] & 2 == 2;
         Ok(s)
     }
 }
@@ -726,6 +772,81 @@ mod tests {
 
     /// A learned state survives the round trip through its bytes; a changed byte, length,
     /// version or level is refused, not trusted.
+    /// Five days of a clear-sky curve, the sensor reading `gain` times the clear sky with the
+    /// sun above `horizon_deg` and 0 below (an obstructed horizon); the calibration after them.
+    fn clear_days(bounds: Bounds, gain: f32, horizon_deg: f32) -> SelfCalibration {
+        let mut cal =
+            SelfCalibration::new(Criteria::RENO_HANSEN_2016, 60, 0.0, bounds).expect("new");
+        for minute in 0..5 * 1440_i64 {
+            #[allow(clippy::cast_precision_loss)]
+            let hours = (minute % 1440) as f32 / 60.0;
+            let elevation = 65.0 * math::sin(core::f32::consts::PI * (hours - 5.5) / 13.0);
+            let clear = 1000.0 * math::powf(math::sin(elevation.max(0.0).to_radians()), 1.2);
+            let measured = if elevation > horizon_deg {
+                gain * clear
+            } else {
+                0.0
+            };
+            let _ = cal.update(&Observation {
+                seconds: 60 * minute,
+                sun_elevation_deg: elevation,
+                measured,
+                clear,
+            });
+        }
+        cal
+    }
+
+    #[test]
+    fn a_day_clear_only_above_the_bounds_is_flagged_and_kept() {
+        // 80 % high (a wrong sensitivity constant), the horizon obstructed below 20°: beyond the
+        // detector's mean criterion (75 W/m²) wherever the sensor sees the sun, so nothing is
+        // learned; but clear at its own factor 1.8, above the bounds: bright days.
+        let cal = clear_days(Bounds::DEFAULT, 1.8, 20.0);
+        assert_eq!((cal.level_unbounded(), cal.bright), (None, true));
+        assert_eq!(cal.status(), Status::SensorSuspect);
+        assert!((cal.factor(40.0) - 1.0).abs() < 1e-6);
+        // 30 % high is within the bounds: not bright, nothing learned, not flagged.
+        let within = clear_days(Bounds::DEFAULT, 1.3, 20.0);
+        assert_eq!((within.bright, within.status()), (false, Status::Learning));
+        // Bounds of 0.8 to 1.2 make the same days bright.
+        let narrow = Bounds {
+            min: 0.8,
+            max: 1.2,
+            drift: 0.08,
+        };
+        assert_eq!(
+            clear_days(narrow, 1.3, 20.0).status(),
+            Status::SensorSuspect
+        );
+        // With the low sun in view: flagged too, the factor within the bounds.
+        let seen = clear_days(Bounds::DEFAULT, 1.8, 0.0);
+        assert_eq!(seen.status(), Status::SensorSuspect);
+        assert!((Bounds::DEFAULT.min..=Bounds::DEFAULT.max).contains(&seen.factor(40.0)));
+        // A sensor within the bounds and the detector's reach is never flagged.
+        assert_eq!(clear_days(narrow, 1.1, 20.0).status(), Status::Calibrated);
+        // The flag survives a restart, and a recommissioning forgets it.
+        let load = |b: &[u8]| {
+            SelfCalibration::from_bytes(b, Criteria::RENO_HANSEN_2016, 60, 0.0, Bounds::DEFAULT)
+        };
+        let mut back = load(&cal.to_bytes()).expect("its own state");
+        assert_eq!(back.status(), Status::SensorSuspect);
+        back.recommission();
+        assert_eq!(back.status(), Status::Learning);
+        // A flag byte with an unknown bit is refused.
+        let mut b = cal.to_bytes();
+        b[3] |= 4;
+        let crc = crc16(&b[..STATE_BYTES - 2]).to_le_bytes();
+        b[STATE_BYTES - 2..].copy_from_slice(&crc);
+        assert!(matches!(
+            load(&b),
+            Err(SkyError::OutOfRange {
+                parameter: "calibration state flags",
+                ..
+            })
+        ));
+    }
+
     #[test]
     fn state_round_trips_and_corruption_is_refused() {
         let new = || SelfCalibration::new(Criteria::RENO_HANSEN_2016, 60, 7.0, Bounds::DEFAULT);

@@ -32,7 +32,8 @@ With `--lyngby`, DTU's solar station at Lyngby, Denmark (55.7906 N, 12.5251 E, 5
 licence, so not in this repository), held out from every choice: each month's GHI column
 through `schedule --measurements` with and without the self-calibration (the calibrated figures
 on the days after the first one it reports `calibrated`), on pvlib's clear minutes (sun above
-5 deg), as `gen_station_fixtures.py` picks them.
+5 deg), as `gen_station_fixtures.py` picks them; and the self-calibration's factor at the
+month's end in each band of sun elevation, with the rows it flagged `sensor-suspect`.
 """
 
 import io
@@ -179,14 +180,25 @@ def lyngby(exe, files):
             for t, v in ghi.items():
                 o.write(f"{t.strftime('%Y-%m-%dT%H:%M:%SZ')},{v:g}\n")
         for label, extra in [("climatology alone", ["--no-self-calibration"]), ("self-calibrated", [])]:
-            out = schedule(exe, lat, lon, elevation, path, "csv", extra)
-            out = out[out.utc.isin(minutes)]
+            full = schedule(exe, lat, lon, elevation, path, "csv", extra)
+            out = full[full.utc.isin(minutes)]
             if label == "self-calibrated":
                 first = out[out.calibration_status != "learning"].utc.str[:10].min()
                 out = out[out.utc.str[:10] > first] if isinstance(first, str) else out.iloc[:0]
             k = out.clear_sky_index
             print(f"lyngby {pathlib.Path(f).name} {label:17s} {len(k):5d} clear minutes on {out.utc.str[:10].nunique():2d} days: "
                   f"median {k.median():.3f}, 5-95 % {k.quantile(0.05):.3f}-{k.quantile(0.95):.3f}")
+        # What the self-calibration learned by the month's end: its factor at the last row
+        # with the sun near each band's centre (15, 27.5, 45 deg; 57 deg and above), and the
+        # rows it flagged.
+        out = full  # the self-calibrated run's every row
+        factors = []
+        for lo, hi in [(14.5, 15.5), (27.0, 28.0), (44.5, 45.5), (57.0, 90.0)]:
+            at = out[(out.sun_elevation_deg > lo) & (out.sun_elevation_deg < hi)]
+            factors.append(f"{at.clear_sky_factor.iloc[-1]:.3f}" if len(at) else "-")
+        print(f"lyngby {pathlib.Path(f).name} learned factor at 15 / 27.5 / 45 / 57+ deg: {' / '.join(factors)}; "
+              f"last status {out.calibration_status.iloc[-1]}, rows flagged sensor-suspect "
+              f"{(out.calibration_status == 'sensor-suspect').sum()}")
 
 
 def main():

@@ -116,9 +116,10 @@ pub struct ScheduleArgs {
     /// stays the model's (clear_sky_factor 1; clear_window and calibration_status empty). By
     /// default the site's clear-sky level is learned from the readings' clear periods (Reno and
     /// Hansen 2016's criteria; Jordan and Hansen 2023's for readings 2 to 30 minutes apart),
-    /// one figure per clear day in four bands of sun elevation, bounded (0.75 to 1.6; beyond:
-    /// calibration_status sensor-suspect), and applied from the next day on; readings more
-    /// than 30 minutes apart are not calibrated (the columns as with this flag).
+    /// one figure per clear day in four bands of sun elevation, bounded (0.75 to 1.6; a level
+    /// beyond, or a day clear only above 1.6: calibration_status sensor-suspect), and applied
+    /// from the next day on; readings more than 30 minutes apart are not calibrated (the
+    /// columns as with this flag).
     #[arg(long, requires = "measurements")]
     pub no_self_calibration: bool,
     /// A file holding the self-calibration's learned state (36 bytes): read at the start when
