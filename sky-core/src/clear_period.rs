@@ -25,7 +25,9 @@
 //! **Differences from pvlib**: pvlib rescales the clear sky by a factor α fitted to the clear
 //! readings and repeats (up to 20 times); here the clear sky is compared as given (pvlib with
 //! `max_iterations=1`): the factor is the business of [`crate::self_calibration`], which feeds
-//! the detector its learned clear-sky level. pvlib refuses a series with unequal intervals; here
+//! the detector its learned clear-sky level. [`ClearSkyDetector::fitted_clear_window`] judges a
+//! window once more against the clear sky times α fitted to that window alone (the
+//! self-calibration's test for a sensor reading far too high). pvlib refuses a series with unequal intervals; here
 //! a reading that does not follow the one before by the interval (within a quarter of it), or a
 //! reading that is not finite, starts a new window. Sums are in f32.
 //!
@@ -125,6 +127,19 @@ pub struct Verdict {
     pub newly_clear: usize,
 }
 
+/// A window clear against the clear sky times its own least-squares factor
+/// ([`ClearSkyDetector::fitted_clear_window`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct FittedWindow {
+    /// The window's factor α = Σ m c / Σ c² (measured over clear sky, least squares).
+    pub alpha: f32,
+    /// How many of the newest readings have just become known clear at their window's own
+    /// factor: those not already in an earlier such window or a clear one (0 to the window's
+    /// length), as [`Verdict::newly_clear`] counts them.
+    pub newly_clear: usize,
+}
+
 /// The sliding-window detector (module docs): readings in, a verdict per reading out.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ClearSkyDetector {
@@ -141,6 +156,8 @@ pub struct ClearSkyDetector {
     last: Option<i64>,
     /// How many of the newest readings of the run are not yet known clear.
     unmarked: usize,
+    /// The same for windows clear at their own factor ([`Self::fitted_clear_window`]).
+    fitted_unmarked: usize,
 }
 
 impl ClearSkyDetector {
@@ -202,6 +219,7 @@ impl ClearSkyDetector {
             run: 0,
             last: None,
             unmarked: 0,
+            fitted_unmarked: 0,
         })
     }
 
@@ -227,6 +245,7 @@ impl ClearSkyDetector {
     pub fn reset(&mut self) {
         self.run = 0;
         self.unmarked = 0;
+        self.fitted_unmarked = 0;
         self.last = None;
     }
 
@@ -258,6 +277,7 @@ impl ClearSkyDetector {
         if !evenly {
             self.run = 0;
             self.unmarked = 0;
+            self.fitted_unmarked = 0;
         }
         self.last = Some(seconds);
         self.measured[self.head] = measured;
@@ -265,11 +285,13 @@ impl ClearSkyDetector {
         self.head = (self.head + 1) % WINDOW_CAPACITY;
         self.run = self.run.saturating_add(1);
         self.unmarked = (self.unmarked + 1).min(self.window);
+        self.fitted_unmarked = (self.fitted_unmarked + 1).min(self.window);
         if self.run < self.window || !self.criteria_met(1.0) {
             return Verdict::default();
         }
         let newly_clear = self.unmarked;
         self.unmarked = 0;
+        self.fitted_unmarked = 0;
         Verdict {
             window_clear: true,
             newly_clear,
@@ -278,12 +300,12 @@ impl ClearSkyDetector {
 
     /// Whether the newest window is clear against the clear sky scaled by its own
     /// least-squares factor α = Σ m c / Σ c² (Reno & Hansen's α, as pvlib refits it, but fitted
-    /// to this window alone): `Some(α)` when every criterion holds against α c, `None` when not,
-    /// or before the run fills a window. A smooth overcast also passes at a small α, so only an
-    /// α above what a clear sky can give tells something (a sensor reading high:
-    /// [`crate::self_calibration`]).
-    #[must_use]
-    pub fn fitted_clear_window(&self) -> Option<f32> {
+    /// to this window alone): the factor and the readings it newly covers when every criterion
+    /// holds against α c (they are then counted, as [`Self::push`] counts a clear window's);
+    /// `None` when a criterion fails, when α is not finite and positive, or before the run
+    /// fills a window. A smooth overcast also passes at a small α, so only an α above what a
+    /// clear sky can give tells something (a sensor reading high: [`crate::self_calibration`]).
+    pub fn fitted_clear_window(&mut self) -> Option<FittedWindow> {
         if self.run < self.window {
             return None;
         }
@@ -294,7 +316,12 @@ impl ClearSkyDetector {
             cc += c * c;
         }
         let alpha = mc / cc;
-        (alpha.is_finite() && alpha > 0.0 && self.criteria_met(alpha)).then_some(alpha)
+        if !(alpha.is_finite() && alpha > 0.0 && self.criteria_met(alpha)) {
+            return None;
+        }
+        let newly_clear = self.fitted_unmarked;
+        self.fitted_unmarked = 0;
+        Some(FittedWindow { alpha, newly_clear })
     }
 
     /// The `k`-th of the newest `window` readings, oldest first: (measured, clear sky).
@@ -378,8 +405,10 @@ mod tests {
                 // The window (10 readings) is not full yet.
                 assert_eq!(fitted, None);
             } else {
-                let alpha = fitted.expect("clear at its own factor");
-                assert!((alpha - 1.4).abs() < 1e-5, "{alpha}");
+                let f = fitted.expect("clear at its own factor");
+                assert!((f.alpha - 1.4).abs() < 1e-5, "{}", f.alpha);
+                // The first window covers its 10 readings, each later one the newest.
+                assert_eq!(f.newly_clear, if i == 9 { 10 } else { 1 });
             }
         }
         // A cloud's dip in the window: not clear at any factor.

@@ -50,11 +50,12 @@
 //! (the detector's mean and maximum criteria are absolute, 75 W/m²), so it would learn nothing
 //! and say nothing. Each window the detector does not find clear, with the sun in the bands, is
 //! therefore judged once more against the clear sky scaled by the window's own least-squares
-//! factor ([`crate::clear_period::ClearSkyDetector::fitted_clear_window`]). A day that is not a
-//! clear day but has [`MIN_CLEAR_MINUTES`] of readings clear only at a factor above the upper
-//! bound is a *bright* day: [`Status::SensorSuspect`] until a clear day within the detector's
-//! reach or a recommissioning; the flag is kept in the state. No sky is smooth for an hour
-//! and brighter than the brightest clear sky the bounds allow (a sensor with a wrong
+//! factor ([`crate::clear_period::ClearSkyDetector::fitted_clear_window`]). A day with
+//! [`MIN_CLEAR_MINUTES`] of readings clear only at a factor above the upper bound is a *bright*
+//! day: [`Status::SensorSuspect`] from then on, whatever the days after it (a sensor far too
+//! high may still pass for clear under a smooth overcast it reads as a dim clear sky), until
+//! [`SelfCalibration::recommission`]; the flag is kept in the state. No sky is smooth for an
+//! hour and brighter than the brightest clear sky the bounds allow (a sensor with a wrong
 //! sensitivity constant is); a smooth overcast is darker, so the lower side has no such test.
 //!
 //! **What it cannot tell.** One sensor cannot tell a dirty or miscalibrated sensor from a site
@@ -62,8 +63,8 @@
 //! either as the site's level (the clear-sky index then reads 1 on clear days, which is what a
 //! controller classifying cloud needs, while the absolute level stays the sensor's). Narrower
 //! bounds would not help: even against the site's climatology (`sky-train site`), a clean
-//! sensor's band levels span 0.85 to above 1.2 over a year at DTU Lyngby (`docs/weather.md`),
-//! as far apart as a +25 % calibration error. A shaded part of the day (a clipped morning) is
+//! sensor's learned factor at the month's end spans 0.84 to 1.28 over a year of DTU Lyngby's
+//! months (`docs/weather.md`), as far apart as a +25 % calibration error. A shaded part of the day (a clipped morning) is
 //! not a clear period for the detector and does not enter the level.
 
 use crate::clear_period::{ClearSkyDetector, Criteria, Verdict};
@@ -153,9 +154,9 @@ pub enum Status {
     /// The level has moved more than [`Bounds::drift`] from the commissioned one (soiling, an
     /// obstruction, a recalibration); the factor follows it within the bounds.
     Drifted,
-    /// The level is beyond the bounds (the factor is held at the bound), or the last clear
-    /// day was clear only above the bounds (a *bright* day, module docs): the sensor is
-    /// shaded, covered, miscalibrated or not a global horizontal sensor.
+    /// The level is beyond the bounds (the factor is held at the bound), or a day since the
+    /// last recommissioning had an hour clear only above the bounds (a *bright* day, module
+    /// docs): the sensor is shaded, covered, miscalibrated or not a global horizontal sensor.
     SensorSuspect,
 }
 
@@ -317,10 +318,11 @@ pub struct SelfCalibration {
     day_all: Band,
     /// The clear readings of all bands before the first clear day.
     all: Band,
-    /// Readings today whose window was clear only against the clear sky scaled above the
-    /// bounds ([`ClearSkyDetector::fitted_clear_window`]).
+    /// Readings today found clear only against the clear sky scaled above the bounds
+    /// ([`ClearSkyDetector::fitted_clear_window`]).
     bright_readings: u32,
-    /// The last day with a clear period was a bright day (kept in the state).
+    /// A bright day has been seen since the state began or was last recommissioned (kept in
+    /// the state).
     bright: bool,
 }
 
@@ -531,12 +533,12 @@ impl SelfCalibration {
             // Clear only above the bounds: a smooth day brighter than any clear sky the bounds
             // allow (an overcast can be smooth, never that bright).
             if !verdict.window_clear
-                && self
-                    .detector
-                    .fitted_clear_window()
-                    .is_some_and(|alpha| alpha * working > self.bounds.max)
+                && let Some(f) = self.detector.fitted_clear_window()
+                && f.alpha * working > self.bounds.max
             {
-                self.bright_readings = self.bright_readings.saturating_add(1);
+                #[allow(clippy::cast_possible_truncation)] // at most 64
+                let newly = f.newly_clear as u32;
+                self.bright_readings = self.bright_readings.saturating_add(newly);
             }
             let b = &mut self.bands[band];
             if b.days == 0 && b.count >= 3 {
@@ -590,13 +592,10 @@ impl SelfCalibration {
     fn close_day(&mut self) {
         let minutes =
             |count: u32| u64::from(count) * u64::from(self.detector.interval_seconds()) / 60;
-        let clear_day = minutes(self.day_all.count) >= u64::from(MIN_CLEAR_MINUTES);
-        if clear_day {
-            self.bright = false;
-        } else if minutes(self.bright_readings) >= u64::from(MIN_CLEAR_MINUTES) {
+        if minutes(self.bright_readings) >= u64::from(MIN_CLEAR_MINUTES) {
             self.bright = true;
         }
-        if clear_day {
+        if minutes(self.day_all.count) >= u64::from(MIN_CLEAR_MINUTES) {
             for b in &mut self.bands {
                 if minutes(b.count) >= u64::from(MIN_BAND_MINUTES) {
                     let m = b.median();
@@ -613,8 +612,8 @@ impl SelfCalibration {
 
     /// The learned state in [`STATE_BYTES`] bytes, little-endian: magic 0x5C, version
     /// [`STATE_VERSION`], the bands' numbers of clear-day medians kept (2 bits each, the
-    /// lowest band in the lowest bits), a flag byte (bit 0: commissioned; bit 1: the last day
-    /// with a clear period was a bright day), the clear days
+    /// lowest band in the lowest bits), a flag byte (bit 0: commissioned; bit 1: a bright day
+    /// seen; an estimator of before bit 1 refuses a state with it), the clear days
     /// counted (u16), the commissioned level, the four bands' three medians each (each ln ×
     /// 8192 as i16), and a CRC-16/CCITT-FALSE of the first 34 bytes. The day in progress is not
     /// kept.
@@ -770,31 +769,37 @@ mod tests {
         assert_eq!(crc16(b"123456789"), 0x29B1);
     }
 
-    /// A learned state survives the round trip through its bytes; a changed byte, length,
-    /// version or level is refused, not trusted.
-    /// Five days of a clear-sky curve, the sensor reading `gain` times the clear sky with the
-    /// sun above `horizon_deg` and 0 below (an obstructed horizon); the calibration after them.
-    fn clear_days(bounds: Bounds, gain: f32, horizon_deg: f32) -> SelfCalibration {
+    /// Days of a clear-sky curve, one per `(gain, horizon_deg)`: the sensor reading `gain`
+    /// times the clear sky with the sun above `horizon_deg` and 0 below (an obstructed
+    /// horizon); the calibration after them.
+    fn days(bounds: Bounds, days: &[(f32, f32)]) -> SelfCalibration {
         let mut cal =
             SelfCalibration::new(Criteria::RENO_HANSEN_2016, 60, 0.0, bounds).expect("new");
-        for minute in 0..5 * 1440_i64 {
-            #[allow(clippy::cast_precision_loss)]
-            let hours = (minute % 1440) as f32 / 60.0;
-            let elevation = 65.0 * math::sin(core::f32::consts::PI * (hours - 5.5) / 13.0);
-            let clear = 1000.0 * math::powf(math::sin(elevation.max(0.0).to_radians()), 1.2);
-            let measured = if elevation > horizon_deg {
-                gain * clear
-            } else {
-                0.0
-            };
-            let _ = cal.update(&Observation {
-                seconds: 60 * minute,
-                sun_elevation_deg: elevation,
-                measured,
-                clear,
-            });
+        for (day, &(gain, horizon_deg)) in (0_i64..).zip(days) {
+            for minute in day * 1440..(day + 1) * 1440 {
+                #[allow(clippy::cast_precision_loss)]
+                let hours = (minute % 1440) as f32 / 60.0;
+                let elevation = 65.0 * math::sin(core::f32::consts::PI * (hours - 5.5) / 13.0);
+                let clear = 1000.0 * math::powf(math::sin(elevation.max(0.0).to_radians()), 1.2);
+                let measured = if elevation > horizon_deg {
+                    gain * clear
+                } else {
+                    0.0
+                };
+                let _ = cal.update(&Observation {
+                    seconds: 60 * minute,
+                    sun_elevation_deg: elevation,
+                    measured,
+                    clear,
+                });
+            }
         }
         cal
+    }
+
+    /// Five days at one gain and horizon ([`days`]).
+    fn clear_days(bounds: Bounds, gain: f32, horizon_deg: f32) -> SelfCalibration {
+        days(bounds, &[(gain, horizon_deg); 5])
     }
 
     #[test]
@@ -806,6 +811,10 @@ mod tests {
         assert_eq!((cal.level_unbounded(), cal.bright), (None, true));
         assert_eq!(cal.status(), Status::SensorSuspect);
         assert!((cal.factor(40.0) - 1.0).abs() < 1e-6);
+        // One such day is enough: its bright minutes are counted like clear ones (each reading
+        // once), about 8 hours with the sun above 20°.
+        let one = days(Bounds::DEFAULT, &[(1.8, 20.0), (0.0, 90.0)]);
+        assert!(one.bright);
         // 30 % high is within the bounds: not bright, nothing learned, not flagged.
         let within = clear_days(Bounds::DEFAULT, 1.3, 20.0);
         assert_eq!((within.bright, within.status()), (false, Status::Learning));
@@ -819,12 +828,24 @@ mod tests {
             clear_days(narrow, 1.3, 20.0).status(),
             Status::SensorSuspect
         );
-        // With the low sun in view: flagged too, the factor within the bounds.
+        // With the low sun in view the sensor is still beyond the detector's reach above about
+        // 8° (the mean criterion at 80 % high): nothing learned, flagged by its bright days.
         let seen = clear_days(Bounds::DEFAULT, 1.8, 0.0);
-        assert_eq!(seen.status(), Status::SensorSuspect);
-        assert!((Bounds::DEFAULT.min..=Bounds::DEFAULT.max).contains(&seen.factor(40.0)));
+        assert_eq!((seen.level_unbounded(), seen.bright), (None, true));
         // A sensor within the bounds and the detector's reach is never flagged.
         assert_eq!(clear_days(narrow, 1.1, 20.0).status(), Status::Calibrated);
+        // The flag holds whatever the days after it: here three clear days within the bounds
+        // (a level learned, otherwise `calibrated`).
+        let after = days(
+            Bounds::DEFAULT,
+            &[(1.8, 20.0), (1.0, 0.0), (1.0, 0.0), (1.0, 0.0), (1.0, 0.0)],
+        );
+        assert!(
+            after
+                .level_unbounded()
+                .is_some_and(|l| (l - 1.0).abs() < 0.02)
+        );
+        assert_eq!(after.status(), Status::SensorSuspect);
         // The flag survives a restart, and a recommissioning forgets it.
         let load = |b: &[u8]| {
             SelfCalibration::from_bytes(b, Criteria::RENO_HANSEN_2016, 60, 0.0, Bounds::DEFAULT)
@@ -833,6 +854,10 @@ mod tests {
         assert_eq!(back.status(), Status::SensorSuspect);
         back.recommission();
         assert_eq!(back.status(), Status::Learning);
+        let mut back = load(&after.to_bytes()).expect("its own state");
+        assert_eq!(back.status(), Status::SensorSuspect);
+        back.recommission();
+        assert_eq!(back.status(), Status::Calibrated);
         // A flag byte with an unknown bit is refused.
         let mut b = cal.to_bytes();
         b[3] |= 4;
@@ -847,6 +872,8 @@ mod tests {
         ));
     }
 
+    /// A learned state survives the round trip through its bytes; a changed byte, length,
+    /// version or level is refused, not trusted.
     #[test]
     fn state_round_trips_and_corruption_is_refused() {
         let new = || SelfCalibration::new(Criteria::RENO_HANSEN_2016, 60, 7.0, Bounds::DEFAULT);

@@ -331,15 +331,16 @@ fn percentile_or_nan(v: &[f32], p: f64) -> f32 {
 
 /// Degraded sensors on the Payerne month: a shaded morning (the sun east of south and below
 /// 25° reads a quarter, the diffuse of an obstruction), a sensor soiled 10 % from the second
-/// half on, one miscalibrated +25 % and one −40 % from the start: bounded, flagged where a level
-/// is learned, not chased.
+/// half on, one miscalibrated +25 % (under the default bounds and under 0.8-1.2), one +70 %
+/// and one −40 % from the start: bounded, flagged where a level beyond the bounds is learned or
+/// a day is clear only above them, not chased.
 #[test]
 fn degraded_sensors_stay_bounded_and_are_flagged() {
     let [payerne, _] = stations();
-    let site = Bounds::DEFAULT;
-    let clean = run(&payerne, site, &|r, _, _, _| r.ghi);
+    let bounds = Bounds::DEFAULT;
+    let clean = run(&payerne, bounds, &|r, _, _, _| r.ghi);
     let base = clean.calibration.level_unbounded().expect("learned");
-    let shaded = run(&payerne, site, &|r, el, az, _| {
+    let shaded = run(&payerne, bounds, &|r, el, az, _| {
         if az < 180.0 && el < 25.0 {
             0.25 * r.ghi
         } else {
@@ -347,18 +348,18 @@ fn degraded_sensors_stay_bounded_and_are_flagged() {
         }
     });
     // The days of the second half start at index 6 (21 June).
-    let dirty = run(&payerne, site, &|r, _, _, day| {
+    let dirty = run(&payerne, bounds, &|r, _, _, day| {
         if day >= 6 { 0.9 * r.ghi } else { r.ghi }
     });
-    let high = run(&payerne, site, &|r, _, _, _| 1.25 * r.ghi);
+    let high = run(&payerne, bounds, &|r, _, _, _| 1.25 * r.ghi);
     let narrow = Bounds {
         min: 0.8,
         max: 1.2,
         drift: 0.08,
     };
     let high_narrow = run(&payerne, narrow, &|r, _, _, _| 1.25 * r.ghi);
-    let very_high = run(&payerne, site, &|r, _, _, _| 1.7 * r.ghi);
-    let low = run(&payerne, site, &|r, _, _, _| 0.6 * r.ghi);
+    let very_high = run(&payerne, bounds, &|r, _, _, _| 1.7 * r.ghi);
+    let low = run(&payerne, bounds, &|r, _, _, _| 0.6 * r.ghi);
     for (name, r) in [
         ("clean", &clean),
         ("shaded morning", &shaded),
@@ -427,7 +428,6 @@ fn degraded_sensors_stay_bounded_and_are_flagged() {
         assert!(r.days.iter().all(|d| d.2 != Status::SensorSuspect));
     }
     let c = &low.calibration;
-    let bounds = site;
     let learned = c.level_unbounded().expect("the -40 % sensor's level");
     assert!(learned < bounds.min, "level {learned}");
     assert_eq!(c.status(), Status::SensorSuspect);
