@@ -27,9 +27,10 @@
 //! `max_iterations=1`): the factor is the business of [`crate::self_calibration`], which feeds
 //! the detector its learned clear-sky level. [`ClearSkyDetector::fitted_clear_window`] judges a
 //! window once more against the clear sky times α fitted to that window alone (the
-//! self-calibration's test for a sensor reading far too high). pvlib refuses a series with unequal intervals; here
-//! a reading that does not follow the one before by the interval (within a quarter of it), or a
-//! reading that is not finite, starts a new window. Sums are in f32.
+//! self-calibration's test for a sensor reading far too high). pvlib refuses a series with
+//! unequal intervals; here a reading that does not follow the one before by the interval
+//! (within a quarter of it), or a reading that is not finite, starts a new window. Sums are in
+//! f32.
 //!
 //! **Intervals**: [`Criteria::RENO_HANSEN_2016`] are the paper's thresholds for 1-minute data
 //! (a 10-minute window). [`Criteria::jordan_hansen_2023`] interpolates the thresholds of Jordan

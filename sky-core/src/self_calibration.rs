@@ -64,8 +64,8 @@
 //! controller classifying cloud needs, while the absolute level stays the sensor's). Narrower
 //! bounds would not help: even against the site's climatology (`sky-train site`), a clean
 //! sensor's learned factor at the month's end spans 0.84 to 1.28 over a year of DTU Lyngby's
-//! months (`docs/weather.md`), as far apart as a +25 % calibration error. A shaded part of the day (a clipped morning) is
-//! not a clear period for the detector and does not enter the level.
+//! months (`docs/weather.md`), as far apart as a +25 % calibration error. A shaded part of the
+//! day (a clipped morning) is not a clear period for the detector and does not enter the level.
 
 use crate::clear_period::{ClearSkyDetector, Criteria, Verdict};
 use crate::error::SkyError;
@@ -769,12 +769,21 @@ mod tests {
         assert_eq!(crc16(b"123456789"), 0x29B1);
     }
 
-    /// Days of a clear-sky curve, one per `(gain, horizon_deg)`: the sensor reading `gain`
-    /// times the clear sky with the sun above `horizon_deg` and 0 below (an obstructed
-    /// horizon); the calibration after them.
+    /// Rewrites a state's checksum after a test has changed it (a well-formed state).
+    fn reseal(b: &mut [u8; STATE_BYTES]) {
+        let crc = crc16(&b[..STATE_BYTES - 2]).to_le_bytes();
+        b[STATE_BYTES - 2..].copy_from_slice(&crc);
+    }
+
+    /// The site's longitude in these tests, degrees east.
+    const LONGITUDE: f32 = 7.0;
+
+    /// Days of a clear-sky curve at [`LONGITUDE`], one per `(gain, horizon_deg)`: the sensor
+    /// reading `gain` times the clear sky with the sun above `horizon_deg` and 0 below (an
+    /// obstructed horizon); the calibration after them.
     fn days(bounds: Bounds, days: &[(f32, f32)]) -> SelfCalibration {
         let mut cal =
-            SelfCalibration::new(Criteria::RENO_HANSEN_2016, 60, 0.0, bounds).expect("new");
+            SelfCalibration::new(Criteria::RENO_HANSEN_2016, 60, LONGITUDE, bounds).expect("new");
         for (day, &(gain, horizon_deg)) in (0_i64..).zip(days) {
             for minute in day * 1440..(day + 1) * 1440 {
                 #[allow(clippy::cast_precision_loss)]
@@ -848,7 +857,13 @@ mod tests {
         assert_eq!(after.status(), Status::SensorSuspect);
         // The flag survives a restart, and a recommissioning forgets it.
         let load = |b: &[u8]| {
-            SelfCalibration::from_bytes(b, Criteria::RENO_HANSEN_2016, 60, 0.0, Bounds::DEFAULT)
+            SelfCalibration::from_bytes(
+                b,
+                Criteria::RENO_HANSEN_2016,
+                60,
+                LONGITUDE,
+                Bounds::DEFAULT,
+            )
         };
         let mut back = load(&cal.to_bytes()).expect("its own state");
         assert_eq!(back.status(), Status::SensorSuspect);
@@ -861,8 +876,7 @@ mod tests {
         // A flag byte with an unknown bit is refused.
         let mut b = cal.to_bytes();
         b[3] |= 4;
-        let crc = crc16(&b[..STATE_BYTES - 2]).to_le_bytes();
-        b[STATE_BYTES - 2..].copy_from_slice(&crc);
+        reseal(&mut b);
         assert!(matches!(
             load(&b),
             Err(SkyError::OutOfRange {
@@ -876,21 +890,9 @@ mod tests {
     /// version or level is refused, not trusted.
     #[test]
     fn state_round_trips_and_corruption_is_refused() {
-        let new = || SelfCalibration::new(Criteria::RENO_HANSEN_2016, 60, 7.0, Bounds::DEFAULT);
-        let mut cal = new().expect("calibration");
-        for minute in 0..5 * 1440_i64 {
-            #[allow(clippy::cast_precision_loss)]
-            let hours = (minute % 1440) as f32 / 60.0;
-            let elevation = 65.0 * math::sin(core::f32::consts::PI * (hours - 5.5) / 13.0);
-            let clear = 1000.0 * math::powf(math::sin(elevation.max(0.0).to_radians()), 1.2);
-            let o = Observation {
-                seconds: 60 * minute,
-                sun_elevation_deg: elevation,
-                measured: 0.93 * clear,
-                clear,
-            };
-            let _ = cal.update(&o);
-        }
+        let new =
+            || SelfCalibration::new(Criteria::RENO_HANSEN_2016, 60, LONGITUDE, Bounds::DEFAULT);
+        let cal = clear_days(Bounds::DEFAULT, 0.93, 0.0);
         assert!(
             (cal.factor(40.0) - 0.93).abs() < 0.01,
             "{}",
@@ -899,7 +901,13 @@ mod tests {
         assert_eq!(cal.status(), Status::Calibrated);
         let bytes = cal.to_bytes();
         let load = |b: &[u8]| {
-            SelfCalibration::from_bytes(b, Criteria::RENO_HANSEN_2016, 60, 7.0, Bounds::DEFAULT)
+            SelfCalibration::from_bytes(
+                b,
+                Criteria::RENO_HANSEN_2016,
+                60,
+                LONGITUDE,
+                Bounds::DEFAULT,
+            )
         };
         let back = load(&bytes).expect("its own state");
         for e in [10.0, 15.0, 30.0, 45.0, 70.0] {
@@ -918,8 +926,7 @@ mod tests {
         // A well-formed state of another version, or with a level out of range, is refused.
         let mut b = bytes;
         b[1] = 2;
-        let crc = crc16(&b[..STATE_BYTES - 2]).to_le_bytes();
-        b[STATE_BYTES - 2..].copy_from_slice(&crc);
+        reseal(&mut b);
         assert!(matches!(
             load(&b),
             Err(SkyError::OutOfRange {
@@ -929,8 +936,7 @@ mod tests {
         ));
         let mut b = bytes;
         b[8..10].copy_from_slice(&i16::MAX.to_le_bytes());
-        let crc = crc16(&b[..STATE_BYTES - 2]).to_le_bytes();
-        b[STATE_BYTES - 2..].copy_from_slice(&crc);
+        reseal(&mut b);
         assert!(matches!(
             load(&b),
             Err(SkyError::OutOfRange {

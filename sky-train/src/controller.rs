@@ -1158,15 +1158,13 @@ pub fn schedule_measured(
     read_measurements(file, format, &mut |r| {
         let r = &alone(r);
         rows += 1;
-        match run(r, &mut history) {
-            Err(e) if skipped(&e) => {
-                let value = above_physical_limit(&e).unwrap_or(f32::NAN);
-                let (n, first, value) = too_bright.unwrap_or((0, r.line, value));
-                too_bright = Some((n + 1, first, value));
-                return Ok(());
-            }
-            Err(e) => return Err(located(r, e).into()),
-            Ok(_) => {}
+        if let Err(e) = run(r, &mut history) {
+            let Some(value) = above_physical_limit(&e).filter(|_| station) else {
+                return Err(located(r, e).into());
+            };
+            let (n, first, value) = too_bright.unwrap_or((0, r.line, value));
+            too_bright = Some((n + 1, first, value));
+            return Ok(());
         }
         if r.diffuse_set_aside {
             let (n, first) = set_aside.unwrap_or((0, r.line));

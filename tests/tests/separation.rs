@@ -689,18 +689,20 @@ fn split_of_payerne_clear_minutes() {
             .position(|&h| h == "dhi_wm2")
             .expect("dhi_wm2");
         // Per day: the split's errors and the measured DHI.
-        let mut days: std::collections::BTreeMap<&str, (Vec<f64>, f64)> = Default::default();
+        let mut by_day: std::collections::BTreeMap<&str, (Vec<f64>, f64)> = Default::default();
         for ((t, g, dhi), line) in rows.iter().zip(lines) {
             if *g <= 50.0 {
                 continue;
             }
             let split = num(line.split(',').nth(at).expect("dhi_wm2"));
-            let day = days.entry(&t[..10]).or_default();
+            let day = by_day.entry(&t[..10]).or_default();
             day.0.push(split - dhi);
             day.1 += dhi;
         }
-        let days_map = days;
-        let mut scores: Vec<(f64, f64)> = days_kept(&days_map)
+        // The days with at least 30 minutes.
+        let kept: Vec<&(Vec<f64>, f64)> = by_day.values().filter(|(e, _)| e.len() >= 30).collect();
+        let mut scores: Vec<(f64, f64)> = kept
+            .iter()
             .map(|(e, sum)| {
                 let mean = sum / e.len() as f64;
                 let bias = e.iter().sum::<f64>() / e.len() as f64 / mean;
@@ -722,7 +724,7 @@ fn split_of_payerne_clear_minutes() {
         let (b, r) = (median(&mut b), median(&mut r));
         // Every clear minute of those days pooled, relative to their mean measured DHI.
         let (mut n, mut e1, mut e2, mut sum) = (0.0, 0.0, 0.0, 0.0);
-        for (e, s) in days_kept(&days_map) {
+        for (e, s) in &kept {
             n += e.len() as f64;
             e1 += e.iter().sum::<f64>();
             e2 += e.iter().map(|x| x * x).sum::<f64>();
@@ -749,13 +751,6 @@ fn split_of_payerne_clear_minutes() {
         "the default is no longer the closest at Payerne: {median_rms:?}; revisit \
          Decomposition::default and docs/weather.md"
     );
-}
-
-/// The days with at least 30 minutes: (the split's errors, the sum of the measured DHI), W/m².
-fn days_kept<'a>(
-    days: &'a std::collections::BTreeMap<&str, (Vec<f64>, f64)>,
-) -> impl Iterator<Item = &'a (Vec<f64>, f64)> {
-    days.values().filter(|(e, _)| e.len() >= 30)
 }
 
 /// The published table (`dirint_coefficients.csv`, pvlib's), `[k_t'][zenith][Δk_t']`, 0-based
